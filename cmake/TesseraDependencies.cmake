@@ -1,0 +1,35 @@
+# Finds the Debian-packaged dependencies (scripts/install-deps.sh installs them).
+
+find_package(glm CONFIG REQUIRED)
+find_package(TBB CONFIG REQUIRED)
+find_package(hwy CONFIG REQUIRED)
+find_package(assimp CONFIG REQUIRED)
+find_package(OpenImageIO CONFIG REQUIRED)
+find_package(CLI11 CONFIG REQUIRED)
+
+# (Debian 12 ships OpenImageIO's CMake targets referring to /usr/bin/iconvert # Debian 12's OpenImageIO target names co., so
+# scripts/install-deps.sh installs openimageio-tools too.)
+# Debian 12's OpenImageIO target names /usr/include/opencv4 as an include directory even
+# when OpenCV is not installed, which makes every consumer fail to configure. Tessera uses
+# no OpenCV, so it links through a copy of the target's interface without that directory.
+add_library(tessera_openimageio INTERFACE)
+foreach(_oiio_target OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
+  get_target_property(_dirs ${_oiio_target} INTERFACE_INCLUDE_DIRECTORIES)
+  if(_dirs)
+    list(FILTER _dirs EXCLUDE REGEX "opencv")
+    set_property(TARGET ${_oiio_target} PROPERTY INTERFACE_INCLUDE_DIRECTORIES "${_dirs}")
+  endif()
+  get_target_property(_sys ${_oiio_target} INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
+  if(_sys)
+    list(FILTER _sys EXCLUDE REGEX "opencv")
+    set_property(TARGET ${_oiio_target} PROPERTY INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${_sys}")
+  endif()
+endforeach()
+target_link_libraries(tessera_openimageio INTERFACE OpenImageIO::OpenImageIO)
+
+if(TESSERA_BUILD_TESTS)
+  find_package(GTest CONFIG REQUIRED)
+endif()
+if(TESSERA_BUILD_BENCHMARKS)
+  find_package(benchmark CONFIG REQUIRED)
+endif()

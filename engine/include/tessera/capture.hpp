@@ -1,0 +1,33 @@
+// TRI1 captures: exactly the triangles another renderer drew, to replay them here.
+// Format (little-endian): "TRI1"; uint32 width, height, triangle_count; then 3 x count
+// vertices of 8 float32: clip-space x, y, z, w in the OpenGL convention (-w <= z <= w,
+// NDC y up) and colour r, g, b, a.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "tessera/pipeline.hpp"
+#include "tessera/types.hpp"
+
+namespace tessera {
+
+struct Capture {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<Float4> positions;  // 3 per triangle
+  std::vector<float> colors;      // 4 per vertex
+};
+
+// Throws Error(kIo) when the file cannot be read, Error(kInvalidInput) for a wrong magic, a
+// truncated file, a count that does not match the file size, a zero or oversized frame, or a
+// NaN/Inf position; the message names the file.
+Capture load_capture(const std::filesystem::path& path);
+void save_capture(const std::filesystem::path& path, const Capture& capture);
+
+// The state a capture is replayed with: OpenGL depth convention, depth test LESS, depth
+// cleared to far, no culling.
+PipelineState capture_pipeline();
+
+}  // namespace tessera

@@ -1,0 +1,64 @@
+// The render target: colour and depth for every sample of every pixel.
+// Stored by tile while rendering (each 64x64 tile contiguous); linear, top-row-first images
+// exist only when read back, after the MSAA resolve.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace tessera {
+
+enum class ColorFormat { kRGBA8, kRGBA32F };
+
+struct FramebufferDesc {
+  uint32_t width = 0;   // 1..kMaxFramebufferSize
+  uint32_t height = 0;  // 1..kMaxFramebufferSize
+  uint32_t samples = 1;  // 1, 2, 4, 8 or 16
+  ColorFormat color_format = ColorFormat::kRGBA8;
+};
+
+// Largest total storage of one framebuffer (colour + depth, all samples).
+inline constexpr uint64_t kMaxFramebufferBytes = uint64_t{8} << 30;
+
+namespace detail {
+struct FramebufferAccess;
+struct FramebufferStorage;  // internal
+}
+
+class Framebuffer {
+ public:
+  // Throws Error(kInvalidArgument) for a zero or oversized side or an unsupported sample
+  // count, Error(kOutOfMemory) past kMaxFramebufferBytes. Cleared to colour 0 and depth 1.
+  explicit Framebuffer(const FramebufferDesc& desc);
+  ~Framebuffer();
+  Framebuffer(Framebuffer&&) noexcept;
+  Framebuffer& operator=(Framebuffer&&) noexcept;
+  Framebuffer(const Framebuffer&) = delete;
+  Framebuffer& operator=(const Framebuffer&) = delete;
+
+  const FramebufferDesc& desc() const noexcept;
+  uint32_t width() const noexcept { return desc().width; }
+  uint32_t height() const noexcept { return desc().height; }
+  uint32_t samples() const noexcept { return desc().samples; }
+
+  void clear_color(std::array<float, 4> rgba);
+  void clear_depth(float depth);
+
+  // Resolved colour (box average of the samples), top row first, 4 values per pixel.
+  // RGBA8 framebuffers average the stored 8-bit values and round to nearest; read_rgba32f of
+  // an RGBA8 framebuffer returns that result divided by 255.
+  std::vector<uint8_t> read_rgba8() const;
+  std::vector<float> read_rgba32f() const;
+  // Depth of sample 0 of each pixel, top row first, one float per pixel.
+  std::vector<float> read_depth() const;
+  // Every sample's depth: (y * width + x) * samples + s.
+  std::vector<float> read_sample_depth() const;
+
+ private:
+  friend struct detail::FramebufferAccess;
+  std::unique_ptr<detail::FramebufferStorage> storage_;
+};
+
+}  // namespace tessera

@@ -1,0 +1,47 @@
+// Pipeline state: everything about a draw that is not its vertex data.
+// Conventions (ARCHITECTURE.md section 2): clip space visible in -w <= x, y <= w and
+// 0 <= z <= w; window origin top-left, y down; top-left fill rule; counter-clockwise in NDC
+// (y up) is front-facing by default.
+#pragma once
+
+#include <cstdint>
+
+namespace tessera {
+
+enum class CompareOp { kNever, kLess, kEqual, kLessEqual, kGreater, kNotEqual, kGreaterEqual, kAlways };
+enum class CullMode { kNone, kFront, kBack };
+enum class FrontFace { kCounterClockwise, kClockwise };  // as seen in NDC, y up
+
+// Which clip-space depth range the vertex data uses. kNegativeOneToOne (OpenGL,
+// -w <= z <= w, like glClipControl) is mapped to 0..1 at the viewport transform.
+enum class ClipDepth { kZeroToOne, kNegativeOneToOne };
+
+// Attribute interpolation: perspective-correct (a/w and 1/w interpolated, divided per pixel)
+// or affine (linear in screen space).
+enum class Interpolation { kPerspective, kAffine };
+
+inline constexpr uint32_t kMinSubpixelBits = 4;
+inline constexpr uint32_t kMaxSubpixelBits = 8;
+
+struct PipelineState {
+  // Depth. With depth_test off, depth is neither tested nor written (OpenGL semantics).
+  bool depth_test = true;
+  bool depth_write = true;
+  CompareOp depth_compare = CompareOp::kLess;
+
+  bool color_write = true;
+
+  CullMode cull = CullMode::kNone;
+  FrontFace front_face = FrontFace::kCounterClockwise;
+  ClipDepth clip_depth = ClipDepth::kZeroToOne;
+  Interpolation interpolation = Interpolation::kPerspective;
+
+  // Samples per pixel; 0 means "whatever the framebuffer has". Otherwise it must equal the
+  // framebuffer's sample count.
+  uint32_t samples = 0;
+
+  // Fractional bits of the fixed-point window coordinates vertices are snapped to (4..8).
+  uint32_t subpixel_bits = 8;
+};
+
+}  // namespace tessera

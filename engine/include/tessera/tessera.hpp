@@ -1,0 +1,13 @@
+// Tessera: a tile-based, multithreaded, SIMD software rasterizer. This header includes the
+// whole public API.
+#pragma once
+
+#include "tessera/capture.hpp"
+#include "tessera/error.hpp"
+#include "tessera/framebuffer.hpp"
+#include "tessera/image_io.hpp"
+#include "tessera/mesh.hpp"
+#include "tessera/pipeline.hpp"
+#include "tessera/renderer.hpp"
+#include "tessera/scene.hpp"
+#include "tessera/types.hpp"

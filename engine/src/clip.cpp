@@ -1,0 +1,86 @@
+// Sutherland-Hodgman clipping of triangles against the near, far, w and guard-band planes.
+#include "engine/src/clip.hpp"
+
+namespace tessera {
+
+namespace {
+
+// A plane as the signed distance d(v) = a*x + b*y + c*z + e*w + f; inside when d >= 0.
+struct Plane {
+  double a, b, c, e, f;
+  double distance(const ClipVertex& v) const { return a * v.x + b * v.y + c * v.z + e * v.w + f; }
+};
+
+ClipVertex intersect(const ClipVertex& inside, double d_in, const ClipVertex& outside,
+                     double d_out, uint32_t attribute_count) {
+  const double t = d_in / (d_in - d_out);
+  auto lerp = [t](double p, double q) { return p + t * (q - p); };
+  ClipVertex r;
+  r.x = lerp(inside.x, outside.x);
+  r.y = lerp(inside.y, outside.y);
+  r.z = lerp(inside.z, outside.z);
+  r.w = lerp(inside.w, outside.w);
+  for (uint32_t i = 0; i < attribute_count; ++i) {
+    r.attributes[i] = lerp(inside.attributes[i], outside.attributes[i]);
+  }
+  return r;
+}
+
+// Clips `poly` against one plane in place. Returns whether the plane cut anything.
+bool clip_against(ClipPolygon& poly, const Plane& plane, uint32_t attribute_count) {
+  std::array<double, kMaxClipVertices> d{};
+  bool any_out = false;
+  for (int i = 0; i < poly.count; ++i) {
+    d[i] = plane.distance(poly.vertices[i]);
+    any_out |= !(d[i] >= 0.0);
+  }
+  if (!any_out) return false;
+
+  ClipPolygon result;
+  for (int i = 0; i < poly.count; ++i) {
+    const int j = (i + 1) % poly.count;
+    const ClipVertex& p = poly.vertices[i];
+    const ClipVertex& q = poly.vertices[j];
+    const bool p_in = d[i] >= 0.0;
+    const bool q_in = d[j] >= 0.0;
+    if (p_in) result.vertices[result.count++] = p;
+    if (p_in && !q_in) {
+      result.vertices[result.count++] = intersect(p, d[i], q, d[j], attribute_count);
+    } else if (!p_in && q_in) {
+      result.vertices[result.count++] = intersect(q, d[j], p, d[i], attribute_count);
+    }
+  }
+  poly = result;
+  return true;
+}
+
+}  // namespace
+
+ClipResult clip_triangle(const std::array<ClipVertex, 3>& in, uint32_t attribute_count,
+                         GuardBand guard_band, ClipPolygon& out) {
+  const double gx = guard_band.x;
+  const double gy = guard_band.y;
+  const Plane planes[] = {
+      {0, 0, 1, 0, 0},            // near:   z >= 0
+      {0, 0, -1, 1, 0},           // far:    w - z >= 0
+      {0, 0, 0, 1, -kMinClipW},   // w >= kMinClipW
+      {1, 0, 0, gx, 0},           // left:   x + g w >= 0
+      {-1, 0, 0, gx, 0},          // right:  g w - x >= 0
+      {0, 1, 0, gy, 0},           // bottom: y + g w >= 0 (NDC y up)
+      {0, -1, 0, gy, 0},          // top:    g w - y >= 0
+  };
+  out.count = 3;
+  for (int i = 0; i < 3; ++i) out.vertices[i] = in[i];
+  ClipResult result;
+  for (const Plane& plane : planes) {
+    result.clipped |= clip_against(out, plane, attribute_count);
+    if (out.count < 3) {
+      out.count = 0;
+      return result;
+    }
+  }
+  result.visible = true;
+  return result;
+}
+
+}  // namespace tessera

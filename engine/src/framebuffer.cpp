@@ -1,0 +1,160 @@
+// Framebuffer allocation, clears and read-back with the MSAA box resolve.
+#include <algorithm>
+#include <cmath>
+#include <new>
+#include <string>
+
+#include "engine/src/framebuffer_storage.hpp"
+#include "engine/src/sample_positions.hpp"
+#include "tessera/error.hpp"
+#include "tessera/types.hpp"
+
+namespace tessera {
+
+namespace {
+
+void validate(const FramebufferDesc& d) {
+  auto side = [](const char* name, uint32_t v) {
+    if (v == 0 || v > kMaxFramebufferSize) {
+      throw Error(ErrorCode::kInvalidArgument,
+                  std::string("framebuffer ") + name + " " + std::to_string(v) +
+                      " is out of range (1.." + std::to_string(kMaxFramebufferSize) + ")");
+    }
+  };
+  side("width", d.width);
+  side("height", d.height);
+  if (!is_valid_sample_count(d.samples)) {
+    throw Error(ErrorCode::kInvalidArgument, "framebuffer sample count " +
+                                                 std::to_string(d.samples) +
+                                                 " is not one of 1, 2, 4, 8, 16");
+  }
+  if (d.color_format != ColorFormat::kRGBA8 && d.color_format != ColorFormat::kRGBA32F) {
+    throw Error(ErrorCode::kInvalidArgument, "framebuffer colour format is not a ColorFormat");
+  }
+}
+
+}  // namespace
+
+Framebuffer::Framebuffer(const FramebufferDesc& desc) {
+  validate(desc);
+  auto s = std::make_unique<detail::FramebufferStorage>();
+  s->desc = desc;
+  s->grid = binning::TileGrid::for_size(desc.width, desc.height);
+  const uint64_t samples = uint64_t{s->grid.tile_count()} * binning::kTilePixels * desc.samples;
+  const uint64_t color_bytes = desc.color_format == ColorFormat::kRGBA8 ? 4 : 16;
+  const uint64_t bytes = samples * (color_bytes + 4);
+  if (bytes > kMaxFramebufferBytes) {
+    throw Error(ErrorCode::kOutOfMemory,
+                "framebuffer " + std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                    " with " + std::to_string(desc.samples) + " samples needs " +
+                    std::to_string(bytes >> 20) + " MiB, more than the limit of " +
+                    std::to_string(kMaxFramebufferBytes >> 20) + " MiB");
+  }
+  try {
+    if (desc.color_format == ColorFormat::kRGBA8) {
+      s->rgba8.assign(samples * 4, 0);
+    } else {
+      s->rgba32f.assign(samples * 4, 0.0f);
+    }
+    s->depth.assign(samples, 1.0f);
+  } catch (const std::bad_alloc&) {
+    throw Error(ErrorCode::kOutOfMemory, "framebuffer allocation of " +
+                                             std::to_string(bytes >> 20) + " MiB failed");
+  }
+  storage_ = std::move(s);
+}
+
+Framebuffer::~Framebuffer() = default;
+Framebuffer::Framebuffer(Framebuffer&&) noexcept = default;
+Framebuffer& Framebuffer::operator=(Framebuffer&&) noexcept = default;
+
+const FramebufferDesc& Framebuffer::desc() const noexcept { return storage_->desc; }
+
+void Framebuffer::clear_color(std::array<float, 4> rgba) {
+  detail::FramebufferStorage& s = *storage_;
+  if (s.desc.color_format == ColorFormat::kRGBA8) {
+    std::array<uint8_t, 4> v{};
+    for (int c = 0; c < 4; ++c) v[c] = to_unorm8(rgba[c]);
+    for (size_t i = 0; i < s.rgba8.size(); i += 4) std::copy(v.begin(), v.end(), &s.rgba8[i]);
+  } else {
+    for (size_t i = 0; i < s.rgba32f.size(); i += 4) std::copy(rgba.begin(), rgba.end(), &s.rgba32f[i]);
+  }
+}
+
+void Framebuffer::clear_depth(float depth) {
+  std::fill(storage_->depth.begin(), storage_->depth.end(), depth);
+}
+
+std::vector<uint8_t> Framebuffer::read_rgba8() const {
+  const detail::FramebufferStorage& s = *storage_;
+  const uint32_t n = s.desc.samples;
+  std::vector<uint8_t> out(size_t{s.desc.width} * s.desc.height * 4);
+  std::vector<float> f;
+  if (s.desc.color_format == ColorFormat::kRGBA32F) f = read_rgba32f();
+  for (uint32_t y = 0; y < s.desc.height; ++y) {
+    for (uint32_t x = 0; x < s.desc.width; ++x) {
+      const size_t o = (size_t{y} * s.desc.width + x) * 4;
+      for (uint32_t c = 0; c < 4; ++c) {
+        if (s.desc.color_format == ColorFormat::kRGBA32F) {
+          out[o + c] = to_unorm8(f[o + c]);
+          continue;
+        }
+        uint32_t sum = 0;
+        for (uint32_t k = 0; k < n; ++k) sum += s.rgba8[s.sample_index(x, y, k) * 4 + c];
+        out[o + c] = static_cast<uint8_t>((sum + n / 2) / n);
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<float> Framebuffer::read_rgba32f() const {
+  const detail::FramebufferStorage& s = *storage_;
+  const uint32_t n = s.desc.samples;
+  if (s.desc.color_format == ColorFormat::kRGBA8) {
+    std::vector<uint8_t> bytes = read_rgba8();
+    std::vector<float> out(bytes.size());
+    std::transform(bytes.begin(), bytes.end(), out.begin(),
+                   [](uint8_t b) { return static_cast<float>(b) / 255.0f; });
+    return out;
+  }
+  std::vector<float> out(size_t{s.desc.width} * s.desc.height * 4);
+  for (uint32_t y = 0; y < s.desc.height; ++y) {
+    for (uint32_t x = 0; x < s.desc.width; ++x) {
+      const size_t o = (size_t{y} * s.desc.width + x) * 4;
+      for (uint32_t c = 0; c < 4; ++c) {
+        float sum = 0.0f;
+        for (uint32_t k = 0; k < n; ++k) sum += s.rgba32f[s.sample_index(x, y, k) * 4 + c];
+        out[o + c] = sum / static_cast<float>(n);
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<float> Framebuffer::read_depth() const {
+  const detail::FramebufferStorage& s = *storage_;
+  std::vector<float> out(size_t{s.desc.width} * s.desc.height);
+  for (uint32_t y = 0; y < s.desc.height; ++y) {
+    for (uint32_t x = 0; x < s.desc.width; ++x) {
+      out[size_t{y} * s.desc.width + x] = s.depth[s.sample_index(x, y, 0)];
+    }
+  }
+  return out;
+}
+
+std::vector<float> Framebuffer::read_sample_depth() const {
+  const detail::FramebufferStorage& s = *storage_;
+  const uint32_t n = s.desc.samples;
+  std::vector<float> out(size_t{s.desc.width} * s.desc.height * n);
+  for (uint32_t y = 0; y < s.desc.height; ++y) {
+    for (uint32_t x = 0; x < s.desc.width; ++x) {
+      for (uint32_t k = 0; k < n; ++k) {
+        out[(size_t{y} * s.desc.width + x) * n + k] = s.depth[s.sample_index(x, y, k)];
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace tessera

@@ -1,0 +1,252 @@
+// The scalar reference rasterizer: ARCHITECTURE.md section 2 in its plainest form.
+// For each triangle: clip (clip.hpp), map to the window, snap to fixed point, then test every
+// sample of the bounding box against three exact 64-bit edge functions (Pineda 1988) with the
+// top-left fill rule of D3D11/Vulkan. No tiles, no SIMD, no threads, no hierarchy, no Hi-Z:
+// a person checking one pixel by hand can follow every step.
+//
+// Numeric range: after guard-band clipping a window coordinate lies within 2^15 pixels of the
+// viewport centre, and the viewport is at most 2^14 pixels wide, so |coordinate| < 2^16
+// pixels, i.e. < 2^24 in fixed point with 8 fractional bits. An edge function is a difference
+// of two products of such differences (< 2^25 each), so |E| < 2^51: exact in int64.
+#include "engine/src/reference/reference_raster.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+
+#include "engine/src/clip.hpp"
+#include "engine/src/sample_positions.hpp"
+
+namespace tessera::reference {
+
+namespace {
+
+// A vertex in window space: snapped fixed-point position, depth and 1/w.
+struct WindowVertex {
+  int64_t x = 0;       // window x * 2^subpixel_bits, rounded to nearest (ties to even)
+  int64_t y = 0;       // window y (downwards) * 2^subpixel_bits
+  double z = 0;        // z / w, in [0, 1]
+  double inv_w = 0;    // 1 / w
+  const ClipVertex* clip = nullptr;  // for the attributes
+};
+
+// Viewport transform and snapping, the convention both rasterizers follow to the bit:
+//   window x = (x / w + 1) * width / 2,  window y = (1 - y / w) * height / 2   (in double)
+//   fixed    = nearbyint(window * 2^subpixel_bits)
+WindowVertex to_window(const ClipVertex& v, uint32_t width, uint32_t height, uint32_t bits) {
+  const double wx = (v.x / v.w + 1.0) * (0.5 * width);
+  const double wy = (1.0 - v.y / v.w) * (0.5 * height);
+  WindowVertex r;
+  r.x = static_cast<int64_t>(std::nearbyint(std::ldexp(wx, static_cast<int>(bits))));
+  r.y = static_cast<int64_t>(std::nearbyint(std::ldexp(wy, static_cast<int>(bits))));
+  r.z = v.z / v.w;
+  r.inv_w = 1.0 / v.w;
+  r.clip = &v;
+  return r;
+}
+
+// The edge function of the directed edge a -> b at point (px, py): twice the signed area of
+// the triangle (a, b, p). Positive on the inside of a triangle with positive area.
+int64_t edge(const WindowVertex& a, const WindowVertex& b, int64_t px, int64_t py) {
+  return (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x);
+}
+
+// Top-left rule, for triangles with positive area in y-down window space (clockwise on
+// screen): a top edge is horizontal and runs towards +x; a left edge runs upwards (towards -y).
+bool is_top_left(const WindowVertex& a, const WindowVertex& b) {
+  const int64_t dx = b.x - a.x;
+  const int64_t dy = b.y - a.y;
+  return dy < 0 || (dy == 0 && dx > 0);
+}
+
+// A sample is inside an edge when the edge function is positive, or zero on a top-left edge.
+bool inside_edge(int64_t e, bool top_left) { return e > 0 || (e == 0 && top_left); }
+
+bool depth_test_passes(CompareOp op, float incoming, float stored) {
+  switch (op) {
+    case CompareOp::kNever: return false;
+    case CompareOp::kLess: return incoming < stored;
+    case CompareOp::kEqual: return incoming == stored;
+    case CompareOp::kLessEqual: return incoming <= stored;
+    case CompareOp::kGreater: return incoming > stored;
+    case CompareOp::kNotEqual: return incoming != stored;
+    case CompareOp::kGreaterEqual: return incoming >= stored;
+    case CompareOp::kAlways: return true;
+  }
+  return false;
+}
+
+// Colour (attributes 0..3, missing components (0, 0, 0, 1)) at the fixed-point point (px, py)
+// from the triangle's screen-space barycentrics, perspective-correct or affine. Returns false
+// when the plane of 1/w is not positive there (a point beyond the triangle's horizon).
+bool interpolate_color(const std::array<WindowVertex, 3>& v, int64_t area, int64_t px, int64_t py,
+                       uint32_t attribute_count, Interpolation mode, std::array<float, 4>& out) {
+  const double b[3] = {static_cast<double>(edge(v[1], v[2], px, py)) / static_cast<double>(area),
+                       static_cast<double>(edge(v[2], v[0], px, py)) / static_cast<double>(area),
+                       static_cast<double>(edge(v[0], v[1], px, py)) / static_cast<double>(area)};
+  double weight[3] = {b[0], b[1], b[2]};
+  if (mode == Interpolation::kPerspective) {
+    // Interpolate a/w and 1/w linearly in screen space, then divide.
+    const double q[3] = {b[0] * v[0].inv_w, b[1] * v[1].inv_w, b[2] * v[2].inv_w};
+    const double sum = q[0] + q[1] + q[2];
+    if (!(sum > 0.0)) return false;
+    for (int i = 0; i < 3; ++i) weight[i] = q[i] / sum;
+  }
+  out = {0.0f, 0.0f, 0.0f, 1.0f};
+  for (uint32_t c = 0; c < std::min(attribute_count, 4u); ++c) {
+    double a = 0.0;
+    for (int i = 0; i < 3; ++i) a += weight[i] * v[i].clip->attributes[c];
+    out[c] = static_cast<float>(a);
+  }
+  return true;
+}
+
+void write_color(detail::FramebufferStorage& fb, size_t index, const std::array<float, 4>& color) {
+  if (fb.desc.color_format == ColorFormat::kRGBA8) {
+    for (int c = 0; c < 4; ++c) fb.rgba8[index * 4 + c] = to_unorm8(color[c]);
+  } else {
+    for (int c = 0; c < 4; ++c) fb.rgba32f[index * 4 + c] = color[c];
+  }
+}
+
+void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                        std::array<WindowVertex, 3> v, uint32_t attribute_count,
+                        Counters& counters) {
+  int64_t area = edge(v[0], v[1], v[2].x, v[2].y);
+  if (area == 0) {
+    ++counters.triangles_culled;
+    return;
+  }
+  // Window y points down, so a triangle counter-clockwise in NDC (y up) has negative area here.
+  const bool counter_clockwise = area < 0;
+  const bool front = counter_clockwise == (pipeline.front_face == FrontFace::kCounterClockwise);
+  if ((pipeline.cull == CullMode::kBack && !front) || (pipeline.cull == CullMode::kFront && front)) {
+    ++counters.triangles_culled;
+    return;
+  }
+  if (area < 0) {
+    std::swap(v[1], v[2]);
+    area = -area;
+  }
+  ++counters.triangles_rasterized;
+
+  const uint32_t bits = pipeline.subpixel_bits;
+  const int shift = static_cast<int>(bits) - 4;  // 1/16 pixel -> fixed point
+  const uint32_t samples = fb.desc.samples;
+  const auto pattern = sample_pattern(samples);
+  const bool top_left[3] = {is_top_left(v[1], v[2]), is_top_left(v[2], v[0]),
+                            is_top_left(v[0], v[1])};
+
+  // Pixels whose samples can be inside: the snapped bounding box, one pixel wider on each side
+  // (a sample may sit on its pixel's left or top border), clamped to the framebuffer.
+  auto pixel_of = [bits](int64_t fixed) { return fixed >> bits; };  // floor division
+  const int64_t x0 = std::max<int64_t>(0, pixel_of(std::min({v[0].x, v[1].x, v[2].x})) - 1);
+  const int64_t y0 = std::max<int64_t>(0, pixel_of(std::min({v[0].y, v[1].y, v[2].y})) - 1);
+  const int64_t x1 = std::min<int64_t>(fb.desc.width - 1, pixel_of(std::max({v[0].x, v[1].x, v[2].x})) + 1);
+  const int64_t y1 = std::min<int64_t>(fb.desc.height - 1, pixel_of(std::max({v[0].y, v[1].y, v[2].y})) + 1);
+
+  for (int64_t py = y0; py <= y1; ++py) {
+    for (int64_t px = x0; px <= x1; ++px) {
+      std::array<bool, 16> passed{};
+      int first_passed = -1;
+      for (uint32_t s = 0; s < samples; ++s) {
+        // Sample position in fixed point: pixel corner + 8/16 (centre) + the sample offset.
+        const int64_t sx = (px * 16 + 8 + pattern[s].dx) << shift;
+        const int64_t sy = (py * 16 + 8 + pattern[s].dy) << shift;
+        const int64_t e0 = edge(v[1], v[2], sx, sy);
+        const int64_t e1 = edge(v[2], v[0], sx, sy);
+        const int64_t e2 = edge(v[0], v[1], sx, sy);
+        if (!(inside_edge(e0, top_left[0]) && inside_edge(e1, top_left[1]) &&
+              inside_edge(e2, top_left[2]))) {
+          continue;
+        }
+        ++counters.samples_covered;
+
+        // Depth z/w is a plane in screen space: interpolate it with the screen barycentrics
+        // (each edge function over the area is the weight of the opposite vertex).
+        const double a = static_cast<double>(area);
+        const double z = (static_cast<double>(e0) * v[0].z + static_cast<double>(e1) * v[1].z +
+                          static_cast<double>(e2) * v[2].z) / a;
+        const float depth = static_cast<float>(std::clamp(z, 0.0, 1.0));
+        const size_t index = fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s);
+        if (pipeline.depth_test) {
+          if (!depth_test_passes(pipeline.depth_compare, depth, fb.depth[index])) continue;
+          if (pipeline.depth_write) fb.depth[index] = depth;
+        }
+        ++counters.samples_passed;
+        passed[s] = true;
+        if (first_passed < 0) first_passed = static_cast<int>(s);
+      }
+      if (first_passed < 0 || !pipeline.color_write) continue;
+
+      // Shade once per pixel, at the pixel centre (at the first passing sample when the centre
+      // lies beyond the triangle's horizon), and store to every sample that passed.
+      std::array<float, 4> color{};
+      const int64_t cx = (px * 16 + 8) << shift;
+      const int64_t cy = (py * 16 + 8) << shift;
+      if (!interpolate_color(v, area, cx, cy, attribute_count, pipeline.interpolation, color)) {
+        const auto& o = pattern[first_passed];
+        interpolate_color(v, area, (px * 16 + 8 + o.dx) << shift, (py * 16 + 8 + o.dy) << shift,
+                          attribute_count, Interpolation::kAffine, color);
+      }
+      for (uint32_t s = 0; s < samples; ++s) {
+        if (passed[s]) {
+          write_color(fb, fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s),
+                      color);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void draw(detail::FramebufferStorage& fb, const PipelineState& pipeline, const DrawInput& input,
+          Counters& counters) {
+  const bool indexed = !input.indices.empty();
+  const size_t triangles = (indexed ? input.indices.size() : input.positions.size()) / 3;
+  const uint32_t attribute_count = input.attribute_count;
+  const GuardBand guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
+
+  for (size_t t = 0; t < triangles; ++t) {
+    ++counters.triangles_submitted;
+    std::array<ClipVertex, 3> tri;
+    for (int k = 0; k < 3; ++k) {
+      const size_t vertex = indexed ? input.indices[t * 3 + k] : t * 3 + k;
+      const Float4& p = input.positions[vertex];
+      ClipVertex& c = tri[k];
+      c.x = p.x;
+      c.y = p.y;
+      c.w = p.w;
+      // OpenGL's -w <= z <= w becomes 0 <= z <= w: z' = (z + w) / 2, linear, so clipping and
+      // interpolation commute with it.
+      c.z = pipeline.clip_depth == ClipDepth::kNegativeOneToOne ? 0.5 * (double{p.z} + p.w) : p.z;
+      for (uint32_t a = 0; a < attribute_count; ++a) {
+        c.attributes[a] = input.attributes[vertex * attribute_count + a];
+      }
+    }
+
+    ClipPolygon polygon;
+    const ClipResult clip = clip_triangle(tri, attribute_count, guard_band, polygon);
+    if (clip.clipped) ++counters.triangles_clipped;
+    if (!clip.visible) {
+      ++counters.triangles_culled;
+      continue;
+    }
+    std::array<WindowVertex, kMaxClipVertices> window;
+    for (int i = 0; i < polygon.count; ++i) {
+      window[i] = to_window(polygon.vertices[i], fb.desc.width, fb.desc.height,
+                            pipeline.subpixel_bits);
+    }
+    // The clipped polygon is convex: draw it as a fan. The fan's inner edges are shared by
+    // two pieces, and the fill rule gives each of their samples to exactly one piece.
+    for (int i = 1; i + 1 < polygon.count; ++i) {
+      rasterize_triangle(fb, pipeline, {window[0], window[i], window[i + 1]}, attribute_count,
+                         counters);
+    }
+  }
+}
+
+}  // namespace tessera::reference

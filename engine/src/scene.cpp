@@ -1,0 +1,125 @@
+// Cameras, projections, per-vertex Phong lighting and scene drawing over GLM. The chain is the
+// lecture notes' M_vp * M_per * M_cam * M_model; the rasterizer applies M_vp.
+#include "tessera/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/mat3x3.hpp>
+
+namespace tessera {
+
+glm::mat4 Camera::view() const { return glm::lookAtRH(eye, target, up); }
+
+glm::mat4 Camera::projection(float aspect, ClipDepth depth) const {
+  const bool zo = depth == ClipDepth::kZeroToOne;
+  if (orthographic) {
+    const float h = 0.5f * ortho_height;
+    const float w = h * aspect;
+    return zo ? glm::orthoRH_ZO(-w, w, -h, h, near_plane, far_plane)
+              : glm::orthoRH_NO(-w, w, -h, h, near_plane, far_plane);
+  }
+  const float fovy = glm::radians(fov_y_degrees);
+  return zo ? glm::perspectiveRH_ZO(fovy, aspect, near_plane, far_plane)
+            : glm::perspectiveRH_NO(fovy, aspect, near_plane, far_plane);
+}
+
+Camera frame_bounds(const Bounds& bounds, float aspect, glm::vec3 direction, float fov_y_degrees) {
+  const glm::vec3 center = 0.5f * (bounds.min + bounds.max);
+  const float radius = std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-6f);
+  const float half_y = 0.5f * glm::radians(fov_y_degrees);
+  const float half_x = std::atan(std::tan(half_y) * aspect);
+  const float distance = radius / std::sin(std::min(half_x, half_y)) * 1.05f;
+  Camera c;
+  c.fov_y_degrees = fov_y_degrees;
+  const float len = glm::length(direction);
+  const glm::vec3 dir = len > 0.0f ? direction / len : glm::vec3(0.0f, 0.0f, 1.0f);
+  c.eye = center + dir * distance;
+  c.target = center;
+  c.up = std::abs(dir.y) > 0.99f ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+  c.near_plane = std::max(distance - 1.2f * radius, 0.01f * radius);
+  c.far_plane = distance + 1.2f * radius;
+  c.ortho_height = 2.2f * radius;
+  return c;
+}
+
+std::vector<float> shade_vertices(const Mesh& mesh, const glm::mat4& model, glm::vec3 eye,
+                                  const DirectionalLight& light) {
+  const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(model)));
+  const glm::vec3 to_light = -glm::normalize(light.direction);
+  std::vector<float> out(mesh.positions.size() * 4);
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::vec3 p = glm::vec3(model * glm::vec4(mesh.positions[i], 1.0f));
+    glm::vec3 n = i < mesh.normals.size() ? normal_matrix * mesh.normals[i] : glm::vec3(0, 0, 1);
+    const float n_len = glm::length(n);
+    n = n_len > 0.0f ? n / n_len : glm::vec3(0.0f, 0.0f, 1.0f);
+    glm::vec3 to_eye = eye - p;
+    const float e_len = glm::length(to_eye);
+    to_eye = e_len > 0.0f ? to_eye / e_len : glm::vec3(0.0f, 0.0f, 1.0f);
+    // Light the side that faces the viewer, so meshes with inconsistent winding look right.
+    if (glm::dot(n, to_eye) < 0.0f) n = -n;
+    const glm::vec4 base = i < mesh.colors.size() ? mesh.colors[i] : glm::vec4(1.0f);
+    const float diffuse = std::max(glm::dot(n, to_light), 0.0f);
+    const glm::vec3 reflected = glm::reflect(-to_light, n);
+    const float specular =
+        diffuse > 0.0f ? std::pow(std::max(glm::dot(reflected, to_eye), 0.0f), light.shininess)
+                       : 0.0f;
+    const glm::vec3 rgb = glm::vec3(base) * (light.ambient + (1.0f - light.ambient) * diffuse) *
+                              light.color +
+                          light.specular * specular * light.color;
+    out[i * 4 + 0] = std::min(rgb.r, 1.0f);
+    out[i * 4 + 1] = std::min(rgb.g, 1.0f);
+    out[i * 4 + 2] = std::min(rgb.b, 1.0f);
+    out[i * 4 + 3] = base.a;
+  }
+  return out;
+}
+
+std::vector<Float4> to_clip_space(std::span<const glm::vec3> positions, const glm::mat4& mvp) {
+  std::vector<Float4> out(positions.size());
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const glm::vec4 c = mvp * glm::vec4(positions[i], 1.0f);
+    out[i] = {c.x, c.y, c.z, c.w};
+  }
+  return out;
+}
+
+size_t Scene::triangle_count() const noexcept {
+  size_t n = 0;
+  for (const SceneObject& o : objects) n += o.mesh.triangle_count();
+  return n;
+}
+
+Bounds Scene::bounds() const {
+  Bounds b{glm::vec3(INFINITY), glm::vec3(-INFINITY)};
+  for (const SceneObject& o : objects) {
+    for (const glm::vec3& p : o.mesh.positions) {
+      const glm::vec3 q = glm::vec3(o.model * glm::vec4(p, 1.0f));
+      b.min = glm::min(b.min, q);
+      b.max = glm::max(b.max, q);
+    }
+  }
+  if (objects.empty()) return {};
+  return b;
+}
+
+void draw_scene(Renderer& renderer, Framebuffer& target, const PipelineState& pipeline,
+                const Scene& scene) {
+  const float aspect = static_cast<float>(target.width()) / static_cast<float>(target.height());
+  const glm::mat4 view_projection =
+      scene.camera.projection(aspect, pipeline.clip_depth) * scene.camera.view();
+  for (const SceneObject& o : scene.objects) {
+    const std::vector<Float4> clip = to_clip_space(o.mesh.positions, view_projection * o.model);
+    const std::vector<float> colors = shade_vertices(o.mesh, o.model, scene.camera.eye, scene.light);
+    DrawInput input;
+    input.positions = clip;
+    input.attributes = colors;
+    input.attribute_count = 4;
+    input.indices = o.mesh.indices;
+    renderer.draw(target, pipeline, input);
+  }
+}
+
+}  // namespace tessera

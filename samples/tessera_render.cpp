@@ -1,0 +1,235 @@
+// tessera-render: the command-line renderer. Renders a mesh (OBJ, glTF, PLY, ...), a TRI1
+// capture, or with no input the built-in demo scene, to an image through OpenImageIO, and
+// prints what it drew and how fast.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "simd/targets.hpp"
+#include "tessera/tessera.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  std::string input;
+  std::string output = "tessera.png";
+  std::string depth_output;
+  uint32_t width = 1280;
+  uint32_t height = 720;
+  uint32_t samples = 4;
+  uint32_t threads = 1;
+  uint32_t repeat = 0;
+  uint32_t subpixel_bits = 8;
+  std::vector<float> eye, target, up;
+  float fov = 40.0f;
+  bool ortho = false;
+  bool no_depth = false;
+  bool affine = false;
+  bool float_color = false;
+  std::string cull = "none";
+  std::string backend = "reference";
+  std::vector<float> clear{0.08f, 0.09f, 0.11f, 1.0f};
+};
+
+glm::vec3 vec3_of(const std::vector<float>& v) { return {v[0], v[1], v[2]}; }
+
+// What one frame draws, independent of where it came from.
+struct Job {
+  std::optional<tessera::Capture> capture;
+  std::optional<tessera::Scene> scene;
+  size_t triangles = 0;
+};
+
+void draw_job(tessera::Renderer& renderer, tessera::Framebuffer& fb,
+              const tessera::PipelineState& pipeline, const Job& job) {
+  if (job.capture) {
+    tessera::DrawInput input;
+    input.positions = job.capture->positions;
+    input.attributes = job.capture->colors;
+    input.attribute_count = 4;
+    renderer.draw(fb, pipeline, input);
+  } else {
+    tessera::draw_scene(renderer, fb, pipeline, *job.scene);
+  }
+}
+
+bool has_extension(const std::string& path, const char* ext) {
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e == ext;
+}
+
+int run(const Options& o, const CLI::App& app) {
+  Job job;
+  uint32_t width = o.width, height = o.height;
+  tessera::PipelineState pipeline;
+  const bool is_capture = !o.input.empty() && has_extension(o.input, ".tri");
+  if (is_capture) {
+    if (app.count("--width") || app.count("--height")) {
+      throw tessera::Error(tessera::ErrorCode::kInvalidArgument,
+                           "--width/--height: a capture renders at its own size");
+    }
+    job.capture = tessera::load_capture(o.input);
+    width = job.capture->width;
+    height = job.capture->height;
+    job.triangles = job.capture->positions.size() / 3;
+    pipeline = tessera::capture_pipeline();
+  } else {
+    if (o.input.empty()) {
+      job.scene = tessera::make_demo_scene();
+    } else {
+      job.scene.emplace();
+      job.scene->objects.push_back({tessera::load_mesh(o.input), glm::mat4(1.0f)});
+      job.scene->camera = tessera::frame_bounds(job.scene->bounds(), float(width) / float(height),
+                                                {0.55f, 0.45f, 1.0f}, o.fov);
+    }
+    tessera::Camera& cam = job.scene->camera;
+    if (!o.eye.empty()) cam.eye = vec3_of(o.eye);
+    if (!o.target.empty()) cam.target = vec3_of(o.target);
+    if (!o.up.empty()) cam.up = vec3_of(o.up);
+    if (app.count("--fov")) cam.fov_y_degrees = o.fov;
+    cam.orthographic = o.ortho;
+    if (!o.eye.empty() || !o.target.empty()) {
+      // Keep the framed depth range around the new view distance.
+      const tessera::Bounds b = job.scene->bounds();
+      const float radius = 0.5f * glm::length(b.max - b.min);
+      const float d = glm::length(0.5f * (b.min + b.max) - cam.eye);
+      cam.near_plane = std::max(d - 1.5f * radius, 1e-3f * std::max(d, radius));
+      cam.far_plane = d + 1.5f * radius;
+    }
+    job.triangles = job.scene->triangle_count();
+  }
+  pipeline.depth_test = !o.no_depth;
+  pipeline.subpixel_bits = o.subpixel_bits;
+  pipeline.interpolation =
+      o.affine ? tessera::Interpolation::kAffine : tessera::Interpolation::kPerspective;
+  pipeline.cull = o.cull == "back"    ? tessera::CullMode::kBack
+                  : o.cull == "front" ? tessera::CullMode::kFront
+                                      : tessera::CullMode::kNone;
+
+  const bool float_color = o.float_color || has_extension(o.output, ".exr");
+  tessera::Framebuffer fb({width, height, o.samples,
+                           float_color ? tessera::ColorFormat::kRGBA32F
+                                       : tessera::ColorFormat::kRGBA8});
+  tessera::Renderer renderer({o.threads, tessera::Backend::kReference});
+  const std::array<float, 4> clear{o.clear[0], o.clear[1], o.clear[2], o.clear[3]};
+
+  auto frame = [&] {
+    const auto t0 = Clock::now();
+    fb.clear_color(clear);
+    fb.clear_depth(1.0f);
+    draw_job(renderer, fb, pipeline, job);
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  };
+
+  std::vector<double> times;
+  if (o.repeat > 0) frame();  // warm-up
+  renderer.reset_counters();
+  const uint32_t frames = std::max<uint32_t>(o.repeat, 1);
+  for (uint32_t i = 0; i < frames; ++i) times.push_back(frame());
+  std::vector<double> sorted = times;
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted.size() % 2 ? sorted[sorted.size() / 2]
+                                          : 0.5 * (sorted[sorted.size() / 2 - 1] +
+                                                   sorted[sorted.size() / 2]);
+  const double mtri_s = double(job.triangles) / (median * 1e-3) / 1e6;
+
+  if (float_color) {
+    const std::vector<float> px = fb.read_rgba32f();
+    tessera::write_image(o.output, width, height, 4, std::span<const float>(px));
+  } else {
+    const std::vector<uint8_t> px = fb.read_rgba8();
+    tessera::write_image(o.output, width, height, 4, std::span<const uint8_t>(px));
+  }
+  if (!o.depth_output.empty()) {
+    const std::vector<float> depth = fb.read_depth();
+    tessera::write_image(o.depth_output, width, height, 1, std::span<const float>(depth));
+  }
+
+  const tessera::Counters& c = renderer.counters();
+  std::printf("%s: %zu triangles, %ux%u, %u sample%s, backend %s, %u thread%s\n",
+              o.input.empty() ? "demo scene" : o.input.c_str(), job.triangles, width, height,
+              o.samples, o.samples == 1 ? "" : "s", o.backend.c_str(), renderer.threads(),
+              renderer.threads() == 1 ? "" : "s");
+  std::printf("rasterized %llu, culled %llu, clipped %llu; samples covered %llu, passed %llu\n",
+              (unsigned long long)(c.triangles_rasterized / frames),
+              (unsigned long long)(c.triangles_culled / frames),
+              (unsigned long long)(c.triangles_clipped / frames),
+              (unsigned long long)(c.samples_covered / frames),
+              (unsigned long long)(c.samples_passed / frames));
+  std::printf("time %.2f ms, %.3f Mtri/s\n", median, mtri_s);
+  if (o.repeat > 0) {
+    std::printf("frames=%u median_ms=%.3f min_ms=%.3f max_ms=%.3f mtri_s=%.3f\n", frames, median,
+                sorted.front(), sorted.back(), mtri_s);
+  }
+  std::printf("wrote %s%s%s\n", o.output.c_str(), o.depth_output.empty() ? "" : " and ",
+              o.depth_output.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{"tessera-render: render a mesh (OBJ, glTF 2.0, PLY, ...), a TRI1 capture (.tri), "
+               "or the built-in demo scene, with the Tessera software rasterizer"};
+  app.add_option("input", o.input, "mesh or .tri capture; none renders the demo scene");
+  app.add_option("-o,--output", o.output, "colour image (PNG, or EXR for float colour)")
+      ->capture_default_str();
+  app.add_option("--depth", o.depth_output, "write the depth buffer to this image (EXR)");
+  app.add_option("--width", o.width, "image width in pixels")
+      ->check(CLI::Range(1u, tessera::kMaxFramebufferSize))->capture_default_str();
+  app.add_option("--height", o.height, "image height in pixels")
+      ->check(CLI::Range(1u, tessera::kMaxFramebufferSize))->capture_default_str();
+  app.add_option("-s,--samples", o.samples, "MSAA samples per pixel")
+      ->check(CLI::IsMember({1u, 2u, 4u, 8u, 16u}))->capture_default_str();
+  app.add_option("--eye", o.eye, "camera position x,y,z")->delimiter(',')->expected(3);
+  app.add_option("--target", o.target, "point the camera looks at x,y,z")->delimiter(',')->expected(3);
+  app.add_option("--up", o.up, "camera up vector x,y,z")->delimiter(',')->expected(3);
+  app.add_option("--fov", o.fov, "vertical field of view in degrees")
+      ->check(CLI::Range(1.0f, 170.0f))->capture_default_str();
+  app.add_flag("--ortho", o.ortho, "orthographic projection");
+  app.add_option("--backend", o.backend, "rasterizer")
+      ->check(CLI::IsMember({"reference"}))->capture_default_str();
+  app.add_option("--threads", o.threads, "worker threads (0 = all cores)")
+      ->check(CLI::Range(0u, 1024u))->capture_default_str();
+  app.add_option("--repeat", o.repeat,
+                 "render K timed frames after one warm-up and print a summary line")
+      ->check(CLI::Range(0u, 1000000u));
+  app.add_option("--subpixel-bits", o.subpixel_bits, "fixed-point fraction bits (4..8)")
+      ->check(CLI::Range(4u, 8u))->capture_default_str();
+  app.add_flag("--no-depth", o.no_depth, "no depth test: later triangles overwrite earlier ones");
+  app.add_option("--cull", o.cull, "face culling")
+      ->check(CLI::IsMember({"back", "front", "none"}))->capture_default_str();
+  app.add_flag("--affine", o.affine, "affine (screen-linear) attribute interpolation");
+  app.add_flag("--float", o.float_color, "float colour buffer (implied by an .exr output)");
+  app.add_option("--clear", o.clear, "clear colour r,g,b,a")->delimiter(',')->expected(4);
+  bool info = false;
+  app.add_flag("--info", info, "print the SIMD targets this CPU supports and exit");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (info) {
+    std::printf("simd targets:");
+    for (const std::string& t : tessera::simd::supported_targets()) std::printf(" %s", t.c_str());
+    std::printf("\n");
+    return 0;
+  }
+  try {
+    return run(o, app);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tessera-render: %s\n", e.what());
+    return 1;
+  }
+}
