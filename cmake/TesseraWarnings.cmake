@@ -1,5 +1,9 @@
 # Compiler warnings and sanitizers applied to every Tessera target.
 
+# No contraction of a * b + c into fused multiply-adds: every SIMD target and the scalar code
+# must round the same way, so that images are the same bytes on every target.
+add_compile_options(-ffp-contract=off)
+
 if(TESSERA_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
   add_link_options(-fsanitize=address,undefined)

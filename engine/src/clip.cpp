@@ -54,13 +54,12 @@ bool clip_against(ClipPolygon& poly, const Plane& plane, uint32_t attribute_coun
   return true;
 }
 
-}  // namespace
+using PlaneSet = std::array<Plane, 7>;
 
-ClipResult clip_triangle(const std::array<ClipVertex, 3>& in, uint32_t attribute_count,
-                         GuardBand guard_band, ClipPolygon& out) {
+PlaneSet clip_planes(GuardBand guard_band) {
   const double gx = guard_band.x;
   const double gy = guard_band.y;
-  const Plane planes[] = {
+  return {{
       {0, 0, 1, 0, 0},            // near:   z >= 0
       {0, 0, -1, 1, 0},           // far:    w - z >= 0
       {0, 0, 0, 1, -kMinClipW},   // w >= kMinClipW
@@ -68,7 +67,23 @@ ClipResult clip_triangle(const std::array<ClipVertex, 3>& in, uint32_t attribute
       {-1, 0, 0, gx, 0},          // right:  g w - x >= 0
       {0, 1, 0, gy, 0},           // bottom: y + g w >= 0 (NDC y up)
       {0, -1, 0, gy, 0},          // top:    g w - y >= 0
-  };
+  }};
+}
+
+}  // namespace
+
+bool needs_clipping(const std::array<ClipVertex, 3>& in, GuardBand guard_band) {
+  for (const Plane& plane : clip_planes(guard_band)) {
+    for (const ClipVertex& v : in) {
+      if (!(plane.distance(v) >= 0.0)) return true;
+    }
+  }
+  return false;
+}
+
+ClipResult clip_triangle(const std::array<ClipVertex, 3>& in, uint32_t attribute_count,
+                         GuardBand guard_band, ClipPolygon& out) {
+  const PlaneSet planes = clip_planes(guard_band);
   out.count = 3;
   for (int i = 0; i < 3; ++i) out.vertices[i] = in[i];
   ClipResult result;

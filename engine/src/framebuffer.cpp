@@ -57,6 +57,9 @@ Framebuffer::Framebuffer(const FramebufferDesc& desc) {
       s->rgba32f.assign(samples * 4, 0.0f);
     }
     s->depth.assign(samples, 1.0f);
+    s->hiz_min.assign(size_t{s->grid.tile_count()} * detail::kBlocksPerTile, 1.0f);
+    s->hiz_max.assign(size_t{s->grid.tile_count()} * detail::kBlocksPerTile, 1.0f);
+    s->hiz_valid = true;
   } catch (const std::bad_alloc&) {
     throw Error(ErrorCode::kOutOfMemory, "framebuffer allocation of " +
                                              std::to_string(bytes >> 20) + " MiB failed");
@@ -83,6 +86,9 @@ void Framebuffer::clear_color(std::array<float, 4> rgba) {
 
 void Framebuffer::clear_depth(float depth) {
   std::fill(storage_->depth.begin(), storage_->depth.end(), depth);
+  std::fill(storage_->hiz_min.begin(), storage_->hiz_min.end(), depth);
+  std::fill(storage_->hiz_max.begin(), storage_->hiz_max.end(), depth);
+  storage_->hiz_valid = !std::isnan(depth);
 }
 
 std::vector<uint8_t> Framebuffer::read_rgba8() const {

@@ -1,7 +1,8 @@
 // Internal view of a framebuffer's storage, shared by the rasterizers and the resolve.
 // Layout: tiles in row-major order; inside a tile, one 64x64 plane per sample; inside a
-// plane, pixels row-major. A tile's samples are therefore contiguous, and one sample's pixels
-// within a tile are a dense 64x64 array that SIMD kernels can step through.
+// plane, 8x8-pixel blocks in row-major order, and inside a block, pixels row-major. A tile's
+// samples are therefore contiguous, and one sample of one block is 64 consecutive values
+// (256 bytes of depth), which SIMD kernels load and store whole.
 #pragma once
 
 #include <cstddef>
@@ -15,18 +16,36 @@ namespace tessera {
 
 namespace detail {
 
+// Blocks of 8x8 pixels: the unit of hierarchical rejection, Hi-Z and SIMD work.
+inline constexpr uint32_t kBlockSizeLog2 = 3;
+inline constexpr uint32_t kBlockSize = 1u << kBlockSizeLog2;
+inline constexpr uint32_t kBlockPixels = kBlockSize * kBlockSize;
+inline constexpr uint32_t kBlocksPerTileSide = binning::kTileSize / kBlockSize;
+inline constexpr uint32_t kBlocksPerTile = kBlocksPerTileSide * kBlocksPerTileSide;
+
+// Offset of pixel (x, y) inside its tile's sample plane.
+constexpr uint32_t in_tile(uint32_t x, uint32_t y) {
+  const uint32_t tx = x & (binning::kTileSize - 1), ty = y & (binning::kTileSize - 1);
+  const uint32_t block = (ty >> kBlockSizeLog2) * kBlocksPerTileSide + (tx >> kBlockSizeLog2);
+  return block * kBlockPixels + ((ty & (kBlockSize - 1)) << kBlockSizeLog2) + (tx & (kBlockSize - 1));
+}
+
 struct FramebufferStorage {
   FramebufferDesc desc;
   binning::TileGrid grid;
   std::vector<uint8_t> rgba8;  // 4 per sample, when desc.color_format == kRGBA8
   std::vector<float> rgba32f;  // 4 per sample, when desc.color_format == kRGBA32F
   std::vector<float> depth;    // 1 per sample
+  // Hi-Z: the nearest and farthest depth over all samples of each 8x8 block (index
+  // tile * kBlocksPerTile + block in tile). Valid only while hiz_valid; a writer that does not
+  // maintain them (the reference rasterizer) clears the flag.
+  std::vector<float> hiz_min;
+  std::vector<float> hiz_max;
+  bool hiz_valid = false;
 
   size_t sample_index(uint32_t x, uint32_t y, uint32_t s) const {
     const size_t tile = grid.tile_of(x, y);
-    const size_t in_tile = ((y & (binning::kTileSize - 1)) << binning::kTileSizeLog2) |
-                           (x & (binning::kTileSize - 1));
-    return (tile * desc.samples + s) * binning::kTilePixels + in_tile;
+    return (tile * desc.samples + s) * binning::kTilePixels + in_tile(x, y);
   }
 };
 

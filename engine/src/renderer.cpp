@@ -1,41 +1,57 @@
 // The Renderer: validates draws, owns the task arena, and hands draws to the chosen backend.
 #include "tessera/renderer.hpp"
 
+#include <optional>
 #include <string>
 
 #include <tbb/task_arena.h>
 
 #include "engine/src/draw_validation.hpp"
+#include "engine/src/fast/fast_raster.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/reference/reference_raster.hpp"
+#include "simd/dispatch.hpp"
 #include "tessera/error.hpp"
 
 namespace tessera {
 
-struct Renderer::Impl {
-  explicit Impl(const RendererOptions& o)
-      : options(o),
-        arena(o.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(o.threads)) {}
-  RendererOptions options;
-  tbb::task_arena arena;
-  Counters counters;
-};
-
 namespace {
+
+// Smallest accepted bin memory budget: room for a few hundred triangles and their references.
+constexpr uint64_t kMinBinMemoryBudget = uint64_t{64} << 10;
+
 RendererOptions checked(const RendererOptions& o) {
   if (o.threads > 1024) {
     throw Error(ErrorCode::kInvalidArgument,
                 "renderer thread count " + std::to_string(o.threads) + " is out of range (0..1024)");
   }
-  if (o.backend != Backend::kReference) {
+  if (o.backend != Backend::kReference && o.backend != Backend::kFast) {
     throw Error(ErrorCode::kInvalidArgument, "renderer backend is not a Backend");
+  }
+  if (o.bin_memory_budget < kMinBinMemoryBudget) {
+    throw Error(ErrorCode::kInvalidArgument,
+                "bin memory budget " + std::to_string(o.bin_memory_budget) +
+                    " bytes is below the minimum of " + std::to_string(kMinBinMemoryBudget));
   }
   return o;
 }
+
 }  // namespace
 
-Renderer::Renderer(const RendererOptions& options)
-    : impl_(std::make_unique<Impl>(checked(options))) {}
+struct Renderer::Impl {
+  explicit Impl(const RendererOptions& o)
+      : options(checked(o)),
+        arena(o.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(o.threads)),
+        target_name(simd::target_name(simd::resolve_target(o.simd))),
+        fast(simd::resolve_target(o.simd), o.bin_memory_budget) {}
+  RendererOptions options;
+  tbb::task_arena arena;
+  std::string target_name;
+  fast::FastRasterizer fast;
+  Counters counters;
+};
+
+Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {}
 Renderer::~Renderer() = default;
 Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;
@@ -44,13 +60,20 @@ uint32_t Renderer::threads() const noexcept {
   return static_cast<uint32_t>(impl_->arena.max_concurrency());
 }
 Backend Renderer::backend() const noexcept { return impl_->options.backend; }
+const char* Renderer::simd_target() const noexcept { return impl_->target_name.c_str(); }
 const Counters& Renderer::counters() const noexcept { return impl_->counters; }
 void Renderer::reset_counters() noexcept { impl_->counters = {}; }
 
 void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input) {
   validate_draw(target, pipeline, input);
   detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
-  reference::draw(storage, pipeline, input, impl_->counters);
+  if (impl_->options.backend == Backend::kReference) {
+    // The reference writes depth without maintaining the fast engine's Hi-Z bounds.
+    if (pipeline.depth_test && pipeline.depth_write) storage.hiz_valid = false;
+    reference::draw(storage, pipeline, input, impl_->counters);
+  } else {
+    impl_->fast.draw(impl_->arena, storage, pipeline, input, impl_->counters);
+  }
 }
 
 }  // namespace tessera

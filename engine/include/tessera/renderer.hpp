@@ -13,11 +13,23 @@ namespace tessera {
 
 enum class Backend {
   kReference,  // the scalar reference rasterizer (ARCHITECTURE.md section 3): the oracle
+  kFast,       // binned, tiled, multithreaded SIMD engine; coverage identical to the reference
 };
+
+// The SIMD instruction set the fast engine's kernels run on. kAuto takes the environment
+// variable TESSERA_SIMD (scalar|sse4|avx2|avx512|neon|sve) when set, else the best target this
+// CPU supports. Forcing a target the CPU lacks is an Error(kInvalidArgument).
+enum class SimdTarget { kAuto, kScalar, kSSE4, kAVX2, kAVX512, kNEON, kSVE };
+
+// Default bound on the memory one draw's binned triangles and bin references may use. A draw
+// that needs more is rasterized in several passes; nothing is dropped.
+inline constexpr uint64_t kDefaultBinMemoryBudget = uint64_t{256} << 20;
 
 struct RendererOptions {
   uint32_t threads = 1;  // worker threads of the renderer's arena; 1 = fully serial, 0 = all cores
   Backend backend = Backend::kReference;
+  SimdTarget simd = SimdTarget::kAuto;
+  uint64_t bin_memory_budget = kDefaultBinMemoryBudget;  // bytes, at least 64 KiB
 };
 
 // One draw call's vertex data, all in caller-owned memory that the renderer only reads.
@@ -32,13 +44,24 @@ struct DrawInput {
 };
 
 // Counts of what the renderer did since construction or the last reset_counters().
+// Counts of what the renderer did since construction or the last reset_counters(). The
+// triangle counts are per piece after clipping; the block and bin counts come from the fast
+// engine only (the reference has neither).
 struct Counters {
   uint64_t triangles_submitted = 0;
-  uint64_t triangles_culled = 0;   // back-face, front-face or zero area after snapping
+  uint64_t triangles_culled = 0;   // back-face, front-face, zero area, or outside the view
   uint64_t triangles_clipped = 0;  // crossed a clip plane and were cut
   uint64_t triangles_rasterized = 0;
+  uint64_t bin_references = 0;     // (triangle, tile) pairs binned
+  uint64_t bin_passes = 0;         // rasterization passes forced by the bin memory budget
+  uint64_t blocks_rejected = 0;    // 8x8 blocks of a triangle's tiles outside an edge
+  uint64_t blocks_accepted = 0;    // blocks fully inside all three edges
+  uint64_t blocks_partial = 0;     // blocks that needed per-sample edge tests
+  uint64_t hiz_rejected = 0;       // blocks skipped because the triangle is behind them
+  uint64_t hiz_accepted = 0;       // fully covered blocks written without reading depth
   uint64_t samples_covered = 0;
   uint64_t samples_passed = 0;     // covered and passed the depth test
+  uint64_t pixels_shaded = 0;      // pixels whose colour was computed (once per pixel)
 };
 
 class Renderer {
@@ -52,6 +75,8 @@ class Renderer {
 
   uint32_t threads() const noexcept;
   Backend backend() const noexcept;
+  // Name of the SIMD target the fast engine runs on ("avx512", "avx2", "sse4", "scalar", ...).
+  const char* simd_target() const noexcept;
 
   // Draws a triangle list. All input is validated before anything is drawn: on
   // Error(kInvalidArgument / kInvalidInput) the framebuffer is left as it was.

@@ -1,0 +1,34 @@
+// The fast engine's draw: parallel setup and binning of contiguous ranges of the draw, then
+// parallel rasterization of the tiles, in passes bounded by the bin memory budget.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include <tbb/task_arena.h>
+
+#include "engine/src/framebuffer_storage.hpp"
+#include "tessera/pipeline.hpp"
+#include "tessera/renderer.hpp"
+
+namespace tessera::fast {
+
+class FastRasterizer {
+ public:
+  FastRasterizer(int64_t simd_target, uint64_t bin_memory_budget);
+  ~FastRasterizer();
+  FastRasterizer(FastRasterizer&&) noexcept;
+  FastRasterizer& operator=(FastRasterizer&&) noexcept;
+
+  int64_t simd_target() const noexcept;
+
+  // Draws a validated draw call (see draw_validation.hpp) inside `arena`.
+  void draw(tbb::task_arena& arena, detail::FramebufferStorage& target,
+            const PipelineState& pipeline, const DrawInput& input, Counters& counters);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace tessera::fast

@@ -1,0 +1,58 @@
+// Triangle setup for the fast engine, done once per triangle: clip when needed, snap to fixed
+// point, cull, and turn the triangle into edge equations and attribute planes that the tile
+// kernels evaluate incrementally (Pineda 1988; Olano and Greer 1997 for the planes).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "engine/src/clip.hpp"
+#include "tessera/pipeline.hpp"
+#include "tessera/renderer.hpp"
+
+namespace tessera::fast {
+
+// One triangle ready to rasterize, oriented so that its area is positive in y-down window
+// space (clockwise on screen).
+//
+// Edge k (opposite vertex k) is E_k(X, Y) = a[k] * X + b[k] * Y + c[k] over fixed-point sample
+// positions, with the top-left rule folded into c: a sample is inside when E_k >= 0 for all k.
+// Ranges (window coordinates below 2^16 px after guard-band clipping, 8 subpixel bits):
+// |X|, |Y| < 2^24, so |a|, |b| < 2^25, |c| < 2^50 and |E| < 2^51 at any sample: exact in
+// int64. `narrow` says 32-bit lanes can step the triangle exactly inside one 8x8 block: see
+// block_kernel.hpp for the bound.
+struct TriangleSetup {
+  std::array<int32_t, 3> a;
+  std::array<int32_t, 3> b;
+  std::array<int64_t, 3> c;
+  int32_t x0, y0, x1, y1;  // pixels whose samples may be inside (inclusive), on screen
+  bool narrow;
+
+  // Planes over pixel coordinates, as value at the centre of pixel (x0, y0) plus gradients per
+  // pixel. z is z/w in [0, 1]. q is 1/w scaled so its largest vertex value is 1 (1 everywhere
+  // for affine interpolation); qa[c] is q times colour channel c, so colour = qa / q.
+  double z0;
+  float z_dx, z_dy;
+  float z_min, z_max;  // over the vertices
+  double q0;
+  float q_dx, q_dy;
+  std::array<double, 4> qa0;
+  std::array<float, 4> qa_dx, qa_dy;
+};
+
+struct SetupContext {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  uint32_t subpixel_bits = 8;
+  uint32_t attribute_count = 0;
+  const PipelineState* pipeline = nullptr;
+  GuardBand guard_band;
+};
+
+// Sets up one input triangle (clip-space vertices in the 0..w depth convention), appending one
+// setup per piece that survives clipping and culling.
+void setup_triangle(const SetupContext& context, const std::array<ClipVertex, 3>& triangle,
+                    std::vector<TriangleSetup>& out, Counters& counters);
+
+}  // namespace tessera::fast
