@@ -15,7 +15,8 @@ class Bins {
   // Empties every list for a grid of `tile_count` tiles, keeping allocated capacity.
   void reset(uint32_t tile_count) {
     if (lists_.size() != tile_count) lists_.assign(tile_count, {});
-    for (auto& list : lists_) list.clear();
+    for (auto& list : lists_)
+      list.clear();
     references_ = 0;
   }
   void add(uint32_t tile, uint32_t triangle) {

@@ -13,18 +13,27 @@ namespace tessera::simd {
 namespace {
 
 // Targets compiled into this build that the CPU can run.
-int64_t available_bits() { return hwy::SupportedTargets() & HWY_TARGETS; }
+int64_t available_bits() {
+  return hwy::SupportedTargets() & HWY_TARGETS;
+}
 
 // The Highway bits a user-facing target may use, best first.
 int64_t candidate_bits(SimdTarget t) {
   switch (t) {
-    case SimdTarget::kScalar: return HWY_SCALAR | HWY_EMU128;
-    case SimdTarget::kSSE4: return HWY_SSE4;
-    case SimdTarget::kAVX2: return HWY_AVX2;
-    case SimdTarget::kAVX512: return HWY_AVX3;
-    case SimdTarget::kNEON: return HWY_NEON;
-    case SimdTarget::kSVE: return HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128;
-    case SimdTarget::kAuto: return available_bits();
+    case SimdTarget::kScalar:
+      return HWY_SCALAR | HWY_EMU128;
+    case SimdTarget::kSSE4:
+      return HWY_SSE4;
+    case SimdTarget::kAVX2:
+      return HWY_AVX2;
+    case SimdTarget::kAVX512:
+      return HWY_AVX3;
+    case SimdTarget::kNEON:
+      return HWY_NEON;
+    case SimdTarget::kSVE:
+      return HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128;
+    case SimdTarget::kAuto:
+      return available_bits();
   }
   return 0;
 }
@@ -50,13 +59,20 @@ int64_t best_of(int64_t bits) {
 
 std::string_view name_of(SimdTarget t) {
   switch (t) {
-    case SimdTarget::kScalar: return "scalar";
-    case SimdTarget::kSSE4: return "sse4";
-    case SimdTarget::kAVX2: return "avx2";
-    case SimdTarget::kAVX512: return "avx512";
-    case SimdTarget::kNEON: return "neon";
-    case SimdTarget::kSVE: return "sve";
-    case SimdTarget::kAuto: return "auto";
+    case SimdTarget::kScalar:
+      return "scalar";
+    case SimdTarget::kSSE4:
+      return "sse4";
+    case SimdTarget::kAVX2:
+      return "avx2";
+    case SimdTarget::kAVX512:
+      return "avx512";
+    case SimdTarget::kNEON:
+      return "neon";
+    case SimdTarget::kSVE:
+      return "sve";
+    case SimdTarget::kAuto:
+      return "auto";
   }
   return "?";
 }
@@ -81,19 +97,29 @@ int64_t resolve_target(SimdTarget requested) {
   return bit;
 }
 
-bool is_available(SimdTarget target) { return best_of(candidate_bits(target)) != 0; }
+bool is_available(SimdTarget target) {
+  return best_of(candidate_bits(target)) != 0;
+}
 
 std::string target_name(int64_t bit) {
   switch (bit) {
     case HWY_SCALAR:
-    case HWY_EMU128: return "scalar";
-    case HWY_SSSE3: return "ssse3";
-    case HWY_SSE4: return "sse4";
-    case HWY_AVX2: return "avx2";
-    case HWY_AVX3: return "avx512";
-    case HWY_AVX3_DL: return "avx512-dl";
-    case HWY_NEON: return "neon";
-    default: return hwy::TargetName(bit);
+    case HWY_EMU128:
+      return "scalar";
+    case HWY_SSSE3:
+      return "ssse3";
+    case HWY_SSE4:
+      return "sse4";
+    case HWY_AVX2:
+      return "avx2";
+    case HWY_AVX3:
+      return "avx512";
+    case HWY_AVX3_DL:
+      return "avx512-dl";
+    case HWY_NEON:
+      return "neon";
+    default:
+      return hwy::TargetName(bit);
   }
 }
 

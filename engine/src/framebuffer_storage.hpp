@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <new>
 #include <vector>
 
 #include "binning/tile_grid.hpp"
@@ -15,6 +16,26 @@
 namespace tessera {
 
 namespace detail {
+
+// Storage aligned to 64 bytes, so that a block's 64 values of one sample (256 bytes of depth)
+// start on a cache line and SIMD kernels can use aligned loads and stores on every target.
+template <typename T>
+struct CacheAlignedAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t kAlignment{64};
+  CacheAlignedAllocator() = default;
+  template <typename U>
+  CacheAlignedAllocator(const CacheAlignedAllocator<U>&) noexcept {}
+  T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+  void deallocate(T* p, size_t) noexcept { ::operator delete(p, kAlignment); }
+  template <typename U>
+  bool operator==(const CacheAlignedAllocator<U>&) const noexcept {
+    return true;
+  }
+};
+
+template <typename T>
+using AlignedVector = std::vector<T, CacheAlignedAllocator<T>>;
 
 // Blocks of 8x8 pixels: the unit of hierarchical rejection, Hi-Z and SIMD work.
 inline constexpr uint32_t kBlockSizeLog2 = 3;
@@ -27,15 +48,16 @@ inline constexpr uint32_t kBlocksPerTile = kBlocksPerTileSide * kBlocksPerTileSi
 constexpr uint32_t in_tile(uint32_t x, uint32_t y) {
   const uint32_t tx = x & (binning::kTileSize - 1), ty = y & (binning::kTileSize - 1);
   const uint32_t block = (ty >> kBlockSizeLog2) * kBlocksPerTileSide + (tx >> kBlockSizeLog2);
-  return block * kBlockPixels + ((ty & (kBlockSize - 1)) << kBlockSizeLog2) + (tx & (kBlockSize - 1));
+  return block * kBlockPixels + ((ty & (kBlockSize - 1)) << kBlockSizeLog2) +
+         (tx & (kBlockSize - 1));
 }
 
 struct FramebufferStorage {
   FramebufferDesc desc;
   binning::TileGrid grid;
-  std::vector<uint8_t> rgba8;  // 4 per sample, when desc.color_format == kRGBA8
-  std::vector<float> rgba32f;  // 4 per sample, when desc.color_format == kRGBA32F
-  std::vector<float> depth;    // 1 per sample
+  AlignedVector<uint8_t> rgba8;  // 4 per sample, when desc.color_format == kRGBA8
+  AlignedVector<float> rgba32f;  // 4 per sample, when desc.color_format == kRGBA32F
+  AlignedVector<float> depth;    // 1 per sample
   // Hi-Z: the nearest and farthest depth over all samples of each 8x8 block (index
   // tile * kBlocksPerTile + block in tile). Valid only while hiz_valid; a writer that does not
   // maintain them (the reference rasterizer) clears the flag.

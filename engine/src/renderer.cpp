@@ -22,8 +22,8 @@ constexpr uint64_t kMinBinMemoryBudget = uint64_t{64} << 10;
 
 RendererOptions checked(const RendererOptions& o) {
   if (o.threads > 1024) {
-    throw Error(ErrorCode::kInvalidArgument,
-                "renderer thread count " + std::to_string(o.threads) + " is out of range (0..1024)");
+    throw Error(ErrorCode::kInvalidArgument, "renderer thread count " + std::to_string(o.threads) +
+                                                 " is out of range (0..1024)");
   }
   if (o.backend != Backend::kReference && o.backend != Backend::kFast) {
     throw Error(ErrorCode::kInvalidArgument, "renderer backend is not a Backend");
@@ -59,10 +59,18 @@ Renderer& Renderer::operator=(Renderer&&) noexcept = default;
 uint32_t Renderer::threads() const noexcept {
   return static_cast<uint32_t>(impl_->arena.max_concurrency());
 }
-Backend Renderer::backend() const noexcept { return impl_->options.backend; }
-const char* Renderer::simd_target() const noexcept { return impl_->target_name.c_str(); }
-const Counters& Renderer::counters() const noexcept { return impl_->counters; }
-void Renderer::reset_counters() noexcept { impl_->counters = {}; }
+Backend Renderer::backend() const noexcept {
+  return impl_->options.backend;
+}
+const char* Renderer::simd_target() const noexcept {
+  return impl_->target_name.c_str();
+}
+const Counters& Renderer::counters() const noexcept {
+  return impl_->counters;
+}
+void Renderer::reset_counters() noexcept {
+  impl_->counters = {};
+}
 
 void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input) {
   validate_draw(target, pipeline, input);

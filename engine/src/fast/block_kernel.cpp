@@ -1,7 +1,17 @@
-// The block kernel, written once against Highway and compiled for every SIMD target through
-// hwy/foreach_target.h (the Embree / Masked Occlusion Culling per-ISA pattern). Lanes are
-// pixels of the 8x8 block in row-major order; each sample is a pass over the lanes with its own
-// edge and depth offsets. Edge functions step exactly in int32 (bound in block_kernel.hpp).
+// The raster kernel, written once against Highway and compiled for every SIMD target through
+// hwy/foreach_target.h (the Embree / Masked Occlusion Culling per-ISA pattern).
+//
+// For one triangle in one tile it walks the 8x8 blocks under the triangle's bounding box. Each
+// block is classified by the edge functions at its corners (Abrash 2009: an edge's extremes
+// over a rectangle lie at two corners): outside an edge (rejected), inside all three (accepted:
+// no edge tests), or partial; then Hi-Z may reject it or prove every sample passes. Lanes are
+// the block's pixels in row-major order, only the rows the triangle touches; each sample is a
+// pass over the lanes with its own edge and depth offsets. Edge functions step exactly in int32
+// (bound in block_kernel.hpp). Planes are evaluated as base + (gx * x + gy * y) from the block
+// corner in the same order on every target, and contraction is off, so every target writes
+// the same bytes.
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -21,6 +31,24 @@ namespace hn = hwy::HWY_NAMESPACE;
 namespace {
 
 constexpr size_t kSamplePlane = binning::kTilePixels;  // values between two samples' planes
+constexpr size_t kBlocksPerTileSide = binning::kTileSize / 8;
+
+// Pixel coordinates of the 64 lanes of a block, row-major.
+struct PixelTables {
+  alignas(64) int32_t x[64];
+  alignas(64) int32_t y[64];
+  alignas(64) float fx[64];
+  alignas(64) float fy[64];
+  constexpr PixelTables() : x(), y(), fx(), fy() {
+    for (int i = 0; i < 64; ++i) {
+      x[i] = i & 7;
+      y[i] = i >> 3;
+      fx[i] = static_cast<float>(i & 7);
+      fy[i] = static_cast<float>(i >> 3);
+    }
+  }
+};
+constexpr PixelTables kPixels;
 
 template <class D>
 HWY_INLINE auto all_lanes(D d) {
@@ -30,203 +58,400 @@ HWY_INLINE auto all_lanes(D d) {
 template <class D, class V>
 HWY_INLINE auto depth_passes(D d, CompareOp op, V incoming, V stored) {
   switch (op) {
-    case CompareOp::kNever: return hn::FirstN(d, 0);
-    case CompareOp::kLess: return hn::Lt(incoming, stored);
-    case CompareOp::kEqual: return hn::Eq(incoming, stored);
-    case CompareOp::kLessEqual: return hn::Le(incoming, stored);
-    case CompareOp::kGreater: return hn::Gt(incoming, stored);
-    case CompareOp::kNotEqual: return hn::Ne(incoming, stored);
-    case CompareOp::kGreaterEqual: return hn::Ge(incoming, stored);
-    case CompareOp::kAlways: break;
+    case CompareOp::kNever:
+      return hn::FirstN(d, 0);
+    case CompareOp::kLess:
+      return hn::Lt(incoming, stored);
+    case CompareOp::kEqual:
+      return hn::Eq(incoming, stored);
+    case CompareOp::kLessEqual:
+      return hn::Le(incoming, stored);
+    case CompareOp::kGreater:
+      return hn::Gt(incoming, stored);
+    case CompareOp::kNotEqual:
+      return hn::Ne(incoming, stored);
+    case CompareOp::kGreaterEqual:
+      return hn::Ge(incoming, stored);
+    case CompareOp::kAlways:
+      break;
   }
   return all_lanes(d);
 }
 
-// A plane's value at the lanes' pixel centres: at0 + gx * x + gy * y.
+// base + (gx * x + gy * y) at the lanes' pixels.
 template <class DF, class VF>
-HWY_INLINE VF plane_at(DF df, VF fx, VF fy, float at0, float gx, float gy) {
-  return hn::Add(hn::Set(df, at0), hn::Add(hn::Mul(fx, hn::Set(df, gx)), hn::Mul(fy, hn::Set(df, gy))));
+HWY_INLINE VF plane_at(DF df, VF fx, VF fy, float base, float gx, float gy) {
+  return hn::Add(hn::Set(df, base),
+                 hn::Add(hn::Mul(fx, hn::Set(df, gx)), hn::Mul(fy, hn::Set(df, gy))));
 }
 
-// Float colour to unorm8 exactly as to_unorm8 does: NaN and <= 0 give 0, >= 1 gives 255,
-// otherwise truncate(c * 255 + 0.5) (multiply, then add: never fused, the build forbids
-// contraction).
+// Float colour to unorm8 as to_unorm8 does for finite values: clamp to [0, 1], then
+// truncate(c * 255 + 0.5) (multiply, then add: never fused, the build forbids contraction).
 template <class DF, class VF>
 HWY_INLINE auto to_unorm8(DF df, VF c) {
   const hn::RebindToUnsigned<DF> du;
-  const auto scaled = hn::Add(hn::Mul(c, hn::Set(df, 255.0f)), hn::Set(df, 0.5f));
-  auto u = hn::BitCast(du, hn::ConvertTo(hn::RebindToSigned<DF>(), scaled));
-  u = hn::IfThenElseZero(hn::RebindMask(du, hn::Gt(c, hn::Zero(df))), u);
-  return hn::IfThenElse(hn::RebindMask(du, hn::Ge(c, hn::Set(df, 1.0f))), hn::Set(du, 255u), u);
+  const auto clamped = hn::Min(hn::Max(c, hn::Zero(df)), hn::Set(df, 1.0f));
+  const auto scaled = hn::Add(hn::Mul(clamped, hn::Set(df, 255.0f)), hn::Set(df, 0.5f));
+  return hn::BitCast(du, hn::ConvertTo(hn::RebindToSigned<DF>(), scaled));
+}
+
+// Conservative depth range of the triangle's plane over a block's sample area, widened by a
+// margin that covers the kernel's float rounding (a few ulps of the terms it adds).
+void block_depth_range(const TriangleSetup& t, int32_t bx, int32_t by, float& lo, float& hi) {
+  const double x_lo = bx * 8.0 - t.x0 - 0.5, x_hi = x_lo + 8.0;
+  const double y_lo = by * 8.0 - t.y0 - 0.5, y_hi = y_lo + 8.0;
+  const double zx_lo = t.z_dx * x_lo, zx_hi = t.z_dx * x_hi;
+  const double zy_lo = t.z_dy * y_lo, zy_hi = t.z_dy * y_hi;
+  const double margin =
+      1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
+  lo = static_cast<float>(
+      std::max<double>(t.z0 + std::min(zx_lo, zx_hi) + std::min(zy_lo, zy_hi), t.z_min) - margin);
+  hi = static_cast<float>(
+      std::min<double>(t.z0 + std::max(zx_lo, zx_hi) + std::max(zy_lo, zy_hi), t.z_max) + margin);
+}
+
+enum class HizVerdict { kTest, kReject, kAccept };
+
+// Whether every sample of a block fails (reject) or passes (accept) the depth test, from the
+// block's depth bounds and the triangle's depth range over it.
+HizVerdict hiz_test(CompareOp op, float tri_lo, float tri_hi, float block_min, float block_max) {
+  switch (op) {
+    case CompareOp::kLess:
+      if (tri_lo >= block_max) return HizVerdict::kReject;
+      if (tri_hi < block_min) return HizVerdict::kAccept;
+      break;
+    case CompareOp::kLessEqual:
+      if (tri_lo > block_max) return HizVerdict::kReject;
+      if (tri_hi <= block_min) return HizVerdict::kAccept;
+      break;
+    case CompareOp::kGreater:
+      if (tri_hi <= block_min) return HizVerdict::kReject;
+      if (tri_lo > block_max) return HizVerdict::kAccept;
+      break;
+    case CompareOp::kGreaterEqual:
+      if (tri_hi < block_min) return HizVerdict::kReject;
+      if (tri_lo >= block_max) return HizVerdict::kAccept;
+      break;
+    default:
+      break;
+  }
+  return HizVerdict::kTest;
+}
+
+// Wide path: exact int64 coverage bits for each pixel of the block (see block_kernel.hpp).
+void wide_coverage(const TriangleSetup& t, const TileContext& tc, int32_t bx, int32_t by,
+                   uint32_t* coverage) {
+  const int shift = static_cast<int>(tc.subpixel_bits) - 4;
+  for (int p = 0; p < 64; ++p) {
+    const int64_t cx = ((int64_t{bx} * 8 + (p & 7)) * 16 + 8) << shift;
+    const int64_t cy = ((int64_t{by} * 8 + (p >> 3)) * 16 + 8) << shift;
+    uint32_t mask = 0;
+    for (uint32_t s = 0; s < tc.samples; ++s) {
+      const int64_t sx = cx + tc.sample_x[s], sy = cy + tc.sample_y[s];
+      bool inside = true;
+      for (int e = 0; e < 3; ++e)
+        inside &= t.a[e] * sx + t.b[e] * sy + t.c[e] >= 0;
+      mask |= inside ? 1u << s : 0u;
+    }
+    coverage[p] = mask;
+  }
 }
 
 template <DepthMode kDepth, ColorMode kColor, bool kMulti>
-void RasterBlock(const KernelConstants& k, const BlockJob& job, BlockStats& stats) {
+void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
   const hn::ScalableTag<int32_t> di;
   const hn::ScalableTag<uint32_t> du;
   const hn::ScalableTag<float> df;
   const size_t lanes = hn::Lanes(di);
-  const uint32_t samples = kMulti ? k.samples : 1;
-  constexpr bool kTestsDepth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
-  constexpr bool kWritesDepth = kDepth == DepthMode::kTestWrite || kDepth == DepthMode::kWrite;
+  const uint32_t samples = kMulti ? tc.samples : 1;
+  const uint32_t bits = tc.subpixel_bits;
+  const int shift = static_cast<int>(bits) - 4;
 
-  // Per-sample offsets of the edge functions and of depth.
+  const int32_t px0 = std::max(t.x0, tc.x0), px1 = std::min(t.x1, tc.x1);
+  const int32_t py0 = std::max(t.y0, tc.y0), py1 = std::min(t.y1, tc.y1);
+  const int32_t tile_bx = tc.x0 >> 3, tile_by = tc.y0 >> 3;
+
+  // Per triangle: edge steps per pixel, their values at the lanes of a block's first lane
+  // group relative to its first pixel, and the per-sample offsets of edges and depth.
+  int32_t step_x[3], step_y[3];
+  for (int e = 0; e < 3; ++e) {
+    step_x[e] = t.a[e] * (1 << bits);
+    step_y[e] = t.b[e] * (1 << bits);
+  }
+  const auto lane_x = hn::Load(di, kPixels.x);
+  const auto lane_y = hn::Load(di, kPixels.y);
+  const auto lane_e0 =
+      hn::Add(hn::Mul(lane_x, hn::Set(di, step_x[0])), hn::Mul(lane_y, hn::Set(di, step_y[0])));
+  const auto lane_e1 =
+      hn::Add(hn::Mul(lane_x, hn::Set(di, step_x[1])), hn::Mul(lane_y, hn::Set(di, step_y[1])));
+  const auto lane_e2 =
+      hn::Add(hn::Mul(lane_x, hn::Set(di, step_x[2])), hn::Mul(lane_y, hn::Set(di, step_y[2])));
   int32_t edge_offset[16][3];
   float z_offset[16];
   for (uint32_t s = 0; s < samples; ++s) {
     for (int e = 0; e < 3; ++e) {
-      edge_offset[s][e] = kMulti ? job.a[e] * k.sample_x[s] + job.b[e] * k.sample_y[s] : 0;
+      edge_offset[s][e] = kMulti ? t.a[e] * tc.sample_x[s] + t.b[e] * tc.sample_y[s] : 0;
     }
-    z_offset[s] = kMulti ? job.z + job.z_dx * k.sample_fx[s] + job.z_dy * k.sample_fy[s] : job.z;
+    z_offset[s] = kMulti ? t.z_dx * tc.sample_fx[s] + t.z_dy * tc.sample_fy[s] : 0.0f;
   }
-  const bool clipped_block = job.cols < 8 || job.rows < 8;
+  alignas(64) uint32_t coverage_bits[64];
 
-  uint32_t covered = 0, passed = 0, shaded = 0;
-  bool wrote = false;
-  for (size_t i = 0; i < 64; i += lanes) {
-    const auto pixel = hn::Iota(di, static_cast<int32_t>(i));
-    const auto px = hn::And(pixel, hn::Set(di, 7));
-    const auto py = hn::ShiftRight<3>(pixel);
-    const auto fx = hn::ConvertTo(df, px);
-    const auto fy = hn::ConvertTo(df, py);
-
-    auto inside_fb = all_lanes(di);
-    if (clipped_block) {
-      inside_fb = hn::And(hn::Lt(px, hn::Set(di, static_cast<int32_t>(job.cols))),
-                          hn::Lt(py, hn::Set(di, static_cast<int32_t>(job.rows))));
-    }
-    const auto e0 = hn::Add(hn::Add(hn::Set(di, job.e[0]), hn::Mul(px, hn::Set(di, job.step_x[0]))),
-                            hn::Mul(py, hn::Set(di, job.step_y[0])));
-    const auto e1 = hn::Add(hn::Add(hn::Set(di, job.e[1]), hn::Mul(px, hn::Set(di, job.step_x[1]))),
-                            hn::Mul(py, hn::Set(di, job.step_y[1])));
-    const auto e2 = hn::Add(hn::Add(hn::Set(di, job.e[2]), hn::Mul(px, hn::Set(di, job.step_x[2]))),
-                            hn::Mul(py, hn::Set(di, job.step_y[2])));
-    const auto coverage_bits =
-        job.coverage ? hn::LoadU(du, job.coverage + i) : hn::Zero(du);
-
-    auto pass_bits = hn::Zero(du);  // bit s: sample s passed
-    for (uint32_t s = 0; s < samples; ++s) {
-      auto cov = inside_fb;
-      if (job.coverage) {
-        cov = hn::And(cov, hn::RebindMask(di, hn::TestBit(coverage_bits, hn::Set(du, 1u << s))));
-      } else {
-        // Inside when E >= 0, i.e. E > -1 (integer lanes have no >= here).
-        const auto minus_one = hn::Set(di, -1);
-        if (job.edge_mask & 1) cov = hn::And(cov, hn::Gt(hn::Add(e0, hn::Set(di, edge_offset[s][0])), minus_one));
-        if (job.edge_mask & 2) cov = hn::And(cov, hn::Gt(hn::Add(e1, hn::Set(di, edge_offset[s][1])), minus_one));
-        if (job.edge_mask & 4) cov = hn::And(cov, hn::Gt(hn::Add(e2, hn::Set(di, edge_offset[s][2])), minus_one));
-      }
-      if (hn::AllFalse(di, cov)) continue;
-      covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
-      auto pass = hn::RebindMask(df, cov);
-      if constexpr (kDepth != DepthMode::kOff) {
-        auto z = hn::Add(hn::Set(df, z_offset[s]),
-                         hn::Add(hn::Mul(fx, hn::Set(df, job.z_dx)), hn::Mul(fy, hn::Set(df, job.z_dy))));
-        z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
-        float* plane = job.depth + s * kSamplePlane + i;
-        if constexpr (kTestsDepth) {
-          pass = hn::And(pass, depth_passes(df, k.compare, z, hn::LoadU(df, plane)));
+  for (int32_t by = py0 >> 3; by <= (py1 >> 3); ++by) {
+    for (int32_t bx = px0 >> 3; bx <= (px1 >> 3); ++bx) {
+      // The block's sample area in fixed point: pixel x holds samples from x + 0/16 to
+      // x + 15/16.
+      const int64_t x_lo = (int64_t{bx} * 8 * 16) << shift;
+      const int64_t x_hi = ((int64_t{bx} * 8 + 7) * 16 + 15) << shift;
+      const int64_t y_lo = (int64_t{by} * 8 * 16) << shift;
+      const int64_t y_hi = ((int64_t{by} * 8 + 7) * 16 + 15) << shift;
+      uint32_t edge_mask = 0;
+      bool rejected = false;
+      for (int e = 0; e < 3; ++e) {
+        const int64_t ax_lo = t.a[e] * x_lo, ax_hi = t.a[e] * x_hi;
+        const int64_t by_lo = t.b[e] * y_lo, by_hi = t.b[e] * y_hi;
+        if (std::max(ax_lo, ax_hi) + std::max(by_lo, by_hi) + t.c[e] < 0) {
+          rejected = true;
+          break;
         }
-        if constexpr (kWritesDepth) {
-          if (!hn::AllFalse(df, pass)) {
-            hn::BlendedStore(z, pass, df, plane);
-            wrote = true;
+        if (std::min(ax_lo, ax_hi) + std::min(by_lo, by_hi) + t.c[e] < 0) edge_mask |= 1u << e;
+      }
+      if (rejected) {
+        ++counters.blocks_rejected;
+        continue;
+      }
+      const size_t block =
+          static_cast<size_t>((by - tile_by) * kBlocksPerTileSide + (bx - tile_bx));
+      const int32_t cols = std::min<int32_t>(8, tc.x1 + 1 - bx * 8);
+      const int32_t rows = std::min<int32_t>(8, tc.y1 + 1 - by * 8);
+      const bool clipped_block = cols < 8 || rows < 8;
+      if (edge_mask == 0) {
+        ++counters.blocks_accepted;
+      } else {
+        ++counters.blocks_partial;
+      }
+
+      bool test_depth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
+      if (tc.hiz) {
+        float lo, hi;
+        block_depth_range(t, bx, by, lo, hi);
+        const HizVerdict verdict =
+            hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]);
+        if (verdict == HizVerdict::kReject) {
+          ++counters.hiz_rejected;
+          continue;
+        }
+        if (verdict == HizVerdict::kAccept && edge_mask == 0 && !clipped_block) {
+          ++counters.hiz_accepted;
+          test_depth = false;  // every sample passes: write without reading
+        }
+      }
+
+      const bool wide = edge_mask != 0 && !t.narrow;
+      if (wide) wide_coverage(t, tc, bx, by, coverage_bits);
+      int32_t e_block[3] = {0, 0, 0};
+      const int64_t cx = (int64_t{bx} * 8 * 16 + 8) << shift;  // centre of the first pixel
+      const int64_t cy = (int64_t{by} * 8 * 16 + 8) << shift;
+      for (int e = 0; e < 3; ++e) {
+        // Only edges crossing the block are stepped; they fit 32 bits (block_kernel.hpp).
+        if (!wide && (edge_mask & (1u << e))) {
+          e_block[e] = static_cast<int32_t>(t.a[e] * cx + t.b[e] * cy + t.c[e]);
+        }
+      }
+      const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;
+      const float z_base = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
+      float* depth = tc.depth + block * 64;
+
+      // Lane groups covering the rows of the block the triangle's bounding box touches.
+      const int32_t row_begin = std::max(py0 - by * 8, 0);
+      const int32_t row_end = std::min(py1 - by * 8 + 1, rows);
+      const size_t first = static_cast<size_t>(row_begin) * 8 / lanes * lanes;
+      const size_t last =
+          std::min<size_t>(64, (static_cast<size_t>(row_end) * 8 + lanes - 1) / lanes * lanes);
+
+      auto written_lo = hn::Set(df, std::numeric_limits<float>::infinity());
+      auto written_hi = hn::Set(df, -std::numeric_limits<float>::infinity());
+      auto overwrote_extreme = hn::FirstN(df, 0);
+      bool wrote = false;
+      uint32_t covered = 0, passed = 0, shaded = 0;
+      const float block_min = tc.hiz_min[block], block_max = tc.hiz_max[block];
+
+      for (size_t i = first; i < last; i += lanes) {
+        const auto fx = hn::Load(df, kPixels.fx + i);
+        const auto fy = hn::Load(df, kPixels.fy + i);
+        auto inside = all_lanes(di);
+        if (clipped_block) {
+          inside = hn::And(hn::Lt(hn::Load(di, kPixels.x + i), hn::Set(di, cols)),
+                           hn::Lt(hn::Load(di, kPixels.y + i), hn::Set(di, rows)));
+        }
+        // Edge values at the lanes' pixel centres: the group's first pixel plus lane offsets.
+        const int32_t gx = static_cast<int32_t>(i & 7), gy = static_cast<int32_t>(i >> 3);
+        const auto e0 = hn::Add(hn::Set(di, e_block[0] + step_x[0] * gx + step_y[0] * gy), lane_e0);
+        const auto e1 = hn::Add(hn::Set(di, e_block[1] + step_x[1] * gx + step_y[1] * gy), lane_e1);
+        const auto e2 = hn::Add(hn::Set(di, e_block[2] + step_x[2] * gx + step_y[2] * gy), lane_e2);
+        const auto cov_bits = wide ? hn::Load(du, coverage_bits + i) : hn::Zero(du);
+
+        auto pass_bits = hn::Zero(du);  // bit s: sample s passed
+        for (uint32_t s = 0; s < samples; ++s) {
+          auto cov = inside;
+          if (wide) {
+            cov = hn::And(cov, hn::RebindMask(di, hn::TestBit(cov_bits, hn::Set(du, 1u << s))));
+          } else {
+            // Inside when E >= 0, i.e. E > -1 (integer lanes have no >= here).
+            const auto minus_one = hn::Set(di, -1);
+            if (edge_mask & 1)
+              cov = hn::And(cov, hn::Gt(hn::Add(e0, hn::Set(di, edge_offset[s][0])), minus_one));
+            if (edge_mask & 2)
+              cov = hn::And(cov, hn::Gt(hn::Add(e1, hn::Set(di, edge_offset[s][1])), minus_one));
+            if (edge_mask & 4)
+              cov = hn::And(cov, hn::Gt(hn::Add(e2, hn::Set(di, edge_offset[s][2])), minus_one));
+          }
+          if (hn::AllFalse(di, cov)) continue;
+          covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
+          auto pass = hn::RebindMask(df, cov);
+          if constexpr (kDepth != DepthMode::kOff) {
+            auto z = plane_at(df, fx, fy, z_base + z_offset[s], t.z_dx, t.z_dy);
+            z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
+            float* plane = depth + s * kSamplePlane + i;
+            if (test_depth) {
+              const auto stored = hn::Load(df, plane);
+              pass = hn::And(pass, depth_passes(df, tc.compare, z, stored));
+              if constexpr (kDepth == DepthMode::kTestWrite) {
+                overwrote_extreme =
+                    hn::Or(overwrote_extreme,
+                           hn::And(pass, hn::Or(hn::Ge(stored, hn::Set(df, block_max)),
+                                                hn::Le(stored, hn::Set(df, block_min)))));
+              }
+            }
+            if constexpr (kDepth == DepthMode::kTestWrite) {
+              if (!hn::AllFalse(df, pass)) {
+                hn::BlendedStore(z, pass, df, plane);
+                written_lo = hn::Min(written_lo, hn::IfThenElse(pass, z, written_lo));
+                written_hi = hn::Max(written_hi, hn::IfThenElse(pass, z, written_hi));
+                wrote = true;
+              }
+            }
+          }
+          passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
+          pass_bits =
+              hn::Or(pass_bits, hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
+        }
+
+        if constexpr (kColor != ColorMode::kOff) {
+          const auto any = hn::Ne(pass_bits, hn::Zero(du));
+          if (hn::AllFalse(du, any)) continue;
+          shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
+          const float q_base = static_cast<float>(t.q0 + t.q_dx * dx + t.q_dy * dy);
+          float qa_base[4];
+          for (int c = 0; c < 4; ++c) {
+            qa_base[c] = static_cast<float>(t.qa0[c] + t.qa_dx[c] * dx + t.qa_dy[c] * dy);
+          }
+          auto r = plane_at(df, fx, fy, qa_base[0], t.qa_dx[0], t.qa_dy[0]);
+          auto g = plane_at(df, fx, fy, qa_base[1], t.qa_dx[1], t.qa_dy[1]);
+          auto b = plane_at(df, fx, fy, qa_base[2], t.qa_dx[2], t.qa_dy[2]);
+          auto a = plane_at(df, fx, fy, qa_base[3], t.qa_dx[3], t.qa_dy[3]);
+          if (tc.perspective) {
+            const auto q = plane_at(df, fx, fy, q_base, t.q_dx, t.q_dy);
+            const auto inv_q = hn::Div(hn::Set(df, 1.0f), q);
+            r = hn::Mul(r, inv_q);
+            g = hn::Mul(g, inv_q);
+            b = hn::Mul(b, inv_q);
+            a = hn::Mul(a, inv_q);
+            const auto beyond = hn::AndNot(hn::Gt(q, hn::Zero(df)), hn::RebindMask(df, any));
+            if (!hn::AllFalse(df, beyond)) {
+              // The pixel centre lies beyond the triangle's horizon (1/w <= 0 there): evaluate
+              // at the pixel's first passing sample instead, which is inside the triangle.
+              alignas(64) float channel[4][64];
+              alignas(64) uint32_t passing[64];
+              hn::Store(r, df, channel[0]);
+              hn::Store(g, df, channel[1]);
+              hn::Store(b, df, channel[2]);
+              hn::Store(a, df, channel[3]);
+              hn::Store(pass_bits, du, passing);
+              for (size_t l = 0; l < lanes; ++l) {
+                const float lx = kPixels.fx[i + l], ly = kPixels.fy[i + l];
+                if (passing[l] == 0 || q_base + (t.q_dx * lx + t.q_dy * ly) > 0.0f) continue;
+                uint32_t s = 0;
+                while (!(passing[l] & (1u << s)))
+                  ++s;
+                const float sx = lx + tc.sample_fx[s], sy = ly + tc.sample_fy[s];
+                const float qs = q_base + (t.q_dx * sx + t.q_dy * sy);
+                for (int c = 0; c < 4; ++c) {
+                  channel[c][l] = (qa_base[c] + (t.qa_dx[c] * sx + t.qa_dy[c] * sy)) / qs;
+                }
+              }
+              r = hn::Load(df, channel[0]);
+              g = hn::Load(df, channel[1]);
+              b = hn::Load(df, channel[2]);
+              a = hn::Load(df, channel[3]);
+            }
+          }
+          if constexpr (kColor == ColorMode::kRGBA8) {
+            const auto packed = hn::Or(
+                hn::Or(to_unorm8(df, r), hn::ShiftLeft<8>(to_unorm8(df, g))),
+                hn::Or(hn::ShiftLeft<16>(to_unorm8(df, b)), hn::ShiftLeft<24>(to_unorm8(df, a))));
+            uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + block * 64 + i;
+            if (samples == 1) {
+              hn::BlendedStore(packed, any, du, colour);
+            } else {
+              for (uint32_t s = 0; s < samples; ++s) {
+                hn::BlendedStore(packed, hn::TestBit(pass_bits, hn::Set(du, 1u << s)), du,
+                                 colour + s * kSamplePlane);
+              }
+            }
+          } else {
+            for (uint32_t s = 0; s < samples; ++s) {
+              const auto m = hn::RebindMask(df, hn::TestBit(pass_bits, hn::Set(du, 1u << s)));
+              float* dst = tc.rgba32f + (block * 64 + s * kSamplePlane + i) * 4;
+              hn::Vec<decltype(df)> r0, g0, b0, a0;
+              hn::LoadInterleaved4(df, dst, r0, g0, b0, a0);
+              hn::StoreInterleaved4(hn::IfThenElse(m, r, r0), hn::IfThenElse(m, g, g0),
+                                    hn::IfThenElse(m, b, b0), hn::IfThenElse(m, a, a0), df, dst);
+            }
           }
         }
       }
-      passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
-      pass_bits = hn::Or(pass_bits, hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
-    }
 
-    if constexpr (kColor != ColorMode::kOff) {
-      const auto any = hn::Ne(pass_bits, hn::Zero(du));
-      if (hn::AllFalse(du, any)) continue;
-      shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
-      auto r = plane_at(df, fx, fy, job.qa[0], job.qa_dx[0], job.qa_dy[0]);
-      auto g = plane_at(df, fx, fy, job.qa[1], job.qa_dx[1], job.qa_dy[1]);
-      auto b = plane_at(df, fx, fy, job.qa[2], job.qa_dx[2], job.qa_dy[2]);
-      auto a = plane_at(df, fx, fy, job.qa[3], job.qa_dx[3], job.qa_dy[3]);
-      if (k.perspective) {
-        const auto q = plane_at(df, fx, fy, job.q, job.q_dx, job.q_dy);
-        const auto inv_q = hn::Div(hn::Set(df, 1.0f), q);
-        r = hn::Mul(r, inv_q);
-        g = hn::Mul(g, inv_q);
-        b = hn::Mul(b, inv_q);
-        a = hn::Mul(a, inv_q);
-        const auto bad = hn::AndNot(hn::Gt(q, hn::Zero(df)), hn::RebindMask(df, any));
-        if (!hn::AllFalse(df, bad)) {
-          // The pixel centre lies beyond the triangle's horizon (1/w <= 0 there): evaluate at
-          // the pixel's first passing sample instead, which is inside the triangle.
-          alignas(64) float rr[64], gg[64], bb[64], aa[64];
-          alignas(64) uint32_t bits[64];
-          hn::Store(r, df, rr);
-          hn::Store(g, df, gg);
-          hn::Store(b, df, bb);
-          hn::Store(a, df, aa);
-          hn::Store(pass_bits, du, bits);
-          for (size_t l = 0; l < lanes; ++l) {
-            const float lx = static_cast<float>((i + l) & 7), ly = static_cast<float>((i + l) >> 3);
-            const float qc = job.q + job.q_dx * lx + job.q_dy * ly;
-            if (bits[l] == 0 || qc > 0.0f) continue;
-            uint32_t s = 0;
-            while (!(bits[l] & (1u << s))) ++s;
-            const float sx = lx + k.sample_fx[s], sy = ly + k.sample_fy[s];
-            const float qs = job.q + job.q_dx * sx + job.q_dy * sy;
-            float* out[4] = {&rr[l], &gg[l], &bb[l], &aa[l]};
-            for (int c = 0; c < 4; ++c) *out[c] = (job.qa[c] + job.qa_dx[c] * sx + job.qa_dy[c] * sy) / qs;
+      counters.samples_covered += covered;
+      counters.samples_passed += passed;
+      counters.pixels_shaded += shaded;
+      if constexpr (kDepth == DepthMode::kTestWrite) {
+        if (wrote) {
+          // Keep the block's Hi-Z bounds: a full write without reads replaces them; otherwise
+          // they widen to the written values, and when a sample at a bound was overwritten
+          // the bounds are recomputed from the block's samples.
+          const float w_lo = hn::GetLane(hn::MinOfLanes(df, written_lo));
+          const float w_hi = hn::GetLane(hn::MaxOfLanes(df, written_hi));
+          if (!test_depth && samples * 64 == passed) {
+            tc.hiz_min[block] = w_lo;
+            tc.hiz_max[block] = w_hi;
+          } else if (!hn::AllFalse(df, overwrote_extreme) || !test_depth) {
+            auto lo = hn::Set(df, std::numeric_limits<float>::infinity());
+            auto hi = hn::Set(df, -std::numeric_limits<float>::infinity());
+            for (uint32_t s = 0; s < samples; ++s) {
+              for (size_t i = 0; i < 64; i += lanes) {
+                const auto z = hn::Load(df, depth + s * kSamplePlane + i);
+                lo = hn::Min(lo, z);
+                hi = hn::Max(hi, z);
+              }
+            }
+            tc.hiz_min[block] = hn::GetLane(hn::MinOfLanes(df, lo));
+            tc.hiz_max[block] = hn::GetLane(hn::MaxOfLanes(df, hi));
+          } else {
+            tc.hiz_min[block] = std::min(block_min, w_lo);
+            tc.hiz_max[block] = std::max(block_max, w_hi);
           }
-          r = hn::Load(df, rr);
-          g = hn::Load(df, gg);
-          b = hn::Load(df, bb);
-          a = hn::Load(df, aa);
-        }
-      }
-      if constexpr (kColor == ColorMode::kRGBA8) {
-        const auto packed = hn::Or(
-            hn::Or(to_unorm8(df, r), hn::ShiftLeft<8>(to_unorm8(df, g))),
-            hn::Or(hn::ShiftLeft<16>(to_unorm8(df, b)), hn::ShiftLeft<24>(to_unorm8(df, a))));
-        for (uint32_t s = 0; s < samples; ++s) {
-          const auto m = hn::TestBit(pass_bits, hn::Set(du, 1u << s));
-          uint32_t* dst = reinterpret_cast<uint32_t*>(job.rgba8) + s * kSamplePlane + i;
-          hn::BlendedStore(packed, m, du, dst);
-        }
-      } else {
-        for (uint32_t s = 0; s < samples; ++s) {
-          const auto m = hn::RebindMask(df, hn::TestBit(pass_bits, hn::Set(du, 1u << s)));
-          float* dst = job.rgba32f + (s * kSamplePlane + i) * 4;
-          hn::Vec<decltype(df)> r0, g0, b0, a0;
-          hn::LoadInterleaved4(df, dst, r0, g0, b0, a0);
-          hn::StoreInterleaved4(hn::IfThenElse(m, r, r0), hn::IfThenElse(m, g, g0),
-                                hn::IfThenElse(m, b, b0), hn::IfThenElse(m, a, a0), df, dst);
         }
       }
     }
-  }
-
-  stats.covered = covered;
-  stats.passed = passed;
-  stats.shaded = shaded;
-  stats.depth_written = wrote;
-  if (wrote) {
-    // Hi-Z: the block's nearest and farthest depth over every sample after the writes.
-    auto lo = hn::Set(df, std::numeric_limits<float>::infinity());
-    auto hi = hn::Set(df, -std::numeric_limits<float>::infinity());
-    for (uint32_t s = 0; s < samples; ++s) {
-      for (size_t i = 0; i < 64; i += lanes) {
-        const auto z = hn::LoadU(df, job.depth + s * kSamplePlane + i);
-        lo = hn::Min(lo, z);
-        hi = hn::Max(hi, z);
-      }
-    }
-    stats.z_min = hn::GetLane(hn::MinOfLanes(df, lo));
-    stats.z_max = hn::GetLane(hn::MaxOfLanes(df, hi));
   }
 }
 
 template <DepthMode kDepth, ColorMode kColor>
 void fill_multi(KernelTable& t) {
-  t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][0] = &RasterBlock<kDepth, kColor, false>;
-  t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][1] = &RasterBlock<kDepth, kColor, true>;
+  t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][0] =
+      &RasterTriangle<kDepth, kColor, false>;
+  t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][1] =
+      &RasterTriangle<kDepth, kColor, true>;
 }
 
 template <DepthMode kDepth>
@@ -244,7 +469,6 @@ const KernelTable* GetKernelTable() {
     fill_color<DepthMode::kOff>(t);
     fill_color<DepthMode::kTest>(t);
     fill_color<DepthMode::kTestWrite>(t);
-    fill_color<DepthMode::kWrite>(t);
     return t;
   }();
   return &table;
@@ -301,8 +525,8 @@ const KernelTable& kernel_table(int64_t target) {
   for (const TargetEntry& entry : kTargets) {
     if (entry.bit == target) return *entry.table();
   }
-  throw Error(ErrorCode::kInvalidArgument, "no block kernels compiled for SIMD target bit " +
-                                               std::to_string(target));
+  throw Error(ErrorCode::kInvalidArgument,
+              "no raster kernels compiled for SIMD target bit " + std::to_string(target));
 }
 
 }  // namespace tessera::fast

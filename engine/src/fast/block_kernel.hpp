@@ -1,14 +1,16 @@
-// The SIMD block kernel: rasterizes one triangle over one 8x8-pixel block of one tile, all
-// samples, with the early depth test, shading once per pixel and the colour write. Written once
-// against Highway and compiled for every target (block_kernel.cpp); a draw picks the instance
-// for its target and state, so a depth-only draw touches no colour and a 1-sample draw tests no
-// sample masks (ARCHITECTURE.md section 5).
+// The SIMD raster kernel: one triangle over the 8x8-pixel blocks it touches in one tile, with
+// the hierarchical block tests, Hi-Z, per-sample coverage, the early depth test, shading once
+// per pixel and the colour write. Written once against Highway and compiled for every target
+// (block_kernel.cpp); a draw picks the instance for its target and state, so a depth-only draw
+// touches no colour and a 1-sample draw tests no sample masks (ARCHITECTURE.md section 5).
 #pragma once
 
 #include <array>
 #include <cstdint>
 
+#include "engine/src/fast/triangle_setup.hpp"
 #include "tessera/pipeline.hpp"
+#include "tessera/renderer.hpp"
 
 namespace tessera::fast {
 
@@ -26,62 +28,43 @@ enum class DepthMode : uint8_t {
   kOff,        // no depth test, no depth write
   kTest,       // test, no write
   kTestWrite,  // test and write passing samples
-  kWrite,      // write without reading (Hi-Z proved every sample passes)
 };
-inline constexpr int kDepthModes = 4;
+inline constexpr int kDepthModes = 3;
 
 enum class ColorMode : uint8_t { kOff, kRGBA8, kRGBA32F };
 inline constexpr int kColorModes = 3;
 
-// Per-draw constants.
-struct KernelConstants {
+// Per-draw constants and the tile being drawn.
+struct TileContext {
   uint32_t samples = 1;
+  uint32_t subpixel_bits = 8;
   CompareOp compare = CompareOp::kLess;
   bool perspective = true;
+  bool hiz = false;  // Hi-Z reject/accept (the compare op is one of <, <=, >, >=)
   // Sample offsets from the pixel centre, in fixed point and in pixels.
   std::array<int32_t, 16> sample_x{}, sample_y{};
   std::array<float, 16> sample_fx{}, sample_fy{};
+
+  // The tile: its first pixel, last pixel (inclusive, inside the framebuffer) and storage.
+  int32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  float* depth = nullptr;    // sample plane s of block b at (s * 64 + b) * 64
+  uint8_t* rgba8 = nullptr;  // 4 bytes per sample value, same layout
+  float* rgba32f = nullptr;  // 4 floats per sample value, same layout
+  float* hiz_min = nullptr;  // per block of the tile
+  float* hiz_max = nullptr;
 };
 
-// One triangle over one block.
-struct BlockJob {
-  uint32_t edge_mask = 0;  // edges to test (bit k = edge k); 0: the block is inside all three
-  uint32_t cols = 8;       // pixels of the block inside the framebuffer (edge blocks have fewer)
-  uint32_t rows = 8;
-  // Edge functions at the centre of the block's first pixel (bias included), their steps per
-  // pixel (a << bits, b << bits) and per fixed-point unit (for the sample offsets).
-  std::array<int32_t, 3> e{}, step_x{}, step_y{}, a{}, b{};
-  // Wide path: per-pixel sample coverage bits computed in int64, replacing the edge tests.
-  const uint32_t* coverage = nullptr;
-  // Planes at the centre of the block's first pixel, gradients per pixel.
-  float z = 0, z_dx = 0, z_dy = 0;
-  float q = 1, q_dx = 0, q_dy = 0;
-  std::array<float, 4> qa{}, qa_dx{}, qa_dy{};
-  // Sample 0 of this block in the tile's storage; sample s lies kTilePixels values further.
-  float* depth = nullptr;
-  uint8_t* rgba8 = nullptr;   // 4 bytes per pixel (R, G, B, A)
-  float* rgba32f = nullptr;   // 4 floats per pixel
-};
-
-struct BlockStats {
-  uint32_t covered = 0;
-  uint32_t passed = 0;
-  uint32_t shaded = 0;
-  bool depth_written = false;
-  float z_min = 0, z_max = 0;  // over every sample of the block, when depth_written
-};
-
-using BlockKernel = void (*)(const KernelConstants&, const BlockJob&, BlockStats&);
+using TriangleKernel = void (*)(const TileContext&, const TriangleSetup&, Counters&);
 
 struct KernelTable {
-  BlockKernel kernels[kDepthModes][kColorModes][2];  // [depth][colour][multisample]
+  TriangleKernel kernels[kDepthModes][kColorModes][2];  // [depth][colour][multisample]
 };
 
 // The kernels compiled for a Highway target bit (see simd/dispatch.hpp).
 const KernelTable& kernel_table(int64_t target);
 
-inline BlockKernel block_kernel(const KernelTable& table, DepthMode depth, ColorMode color,
-                                bool multisample) {
+inline TriangleKernel triangle_kernel(const KernelTable& table, DepthMode depth, ColorMode color,
+                                      bool multisample) {
   return table.kernels[static_cast<int>(depth)][static_cast<int>(color)][multisample ? 1 : 0];
 }
 

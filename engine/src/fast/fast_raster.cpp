@@ -39,7 +39,8 @@ void rebuild_hiz(tbb::task_arena& arena, detail::FramebufferStorage& fb) {
   arena.execute([&] {
     tbb::parallel_for(uint32_t{0}, fb.grid.tile_count(), [&](uint32_t tile) {
       for (uint32_t block = 0; block < detail::kBlocksPerTile; ++block) {
-        float lo = fb.depth[size_t{tile} * samples * binning::kTilePixels + block * detail::kBlockPixels];
+        float lo =
+            fb.depth[size_t{tile} * samples * binning::kTilePixels + block * detail::kBlockPixels];
         float hi = lo;
         for (uint32_t s = 0; s < samples; ++s) {
           const float* z = fb.depth.data() + (size_t{tile} * samples + s) * binning::kTilePixels +
@@ -77,7 +78,9 @@ FastRasterizer::~FastRasterizer() = default;
 FastRasterizer::FastRasterizer(FastRasterizer&&) noexcept = default;
 FastRasterizer& FastRasterizer::operator=(FastRasterizer&&) noexcept = default;
 
-int64_t FastRasterizer::simd_target() const noexcept { return state_->target; }
+int64_t FastRasterizer::simd_target() const noexcept {
+  return state_->target;
+}
 
 void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb,
                           const PipelineState& pipeline, const DrawInput& input,
@@ -91,35 +94,28 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   const binning::TileGrid& grid = fb.grid;
 
   // Kernel state for this draw.
-  TileDrawState tds;
-  tds.fb = &fb;
-  tds.subpixel_bits = bits;
-  KernelConstants& k = tds.constants;
-  k.samples = samples;
-  k.compare = pipeline.depth_compare;
-  k.perspective = pipeline.interpolation == Interpolation::kPerspective;
+  TileContext draw;
+  draw.samples = samples;
+  draw.subpixel_bits = bits;
+  draw.compare = pipeline.depth_compare;
+  draw.perspective = pipeline.interpolation == Interpolation::kPerspective;
   const auto pattern = sample_pattern(samples);
   for (uint32_t s = 0; s < samples; ++s) {
-    k.sample_x[s] = pattern[s].dx * (1 << (bits - 4));
-    k.sample_y[s] = pattern[s].dy * (1 << (bits - 4));
-    k.sample_fx[s] = pattern[s].dx / 16.0f;
-    k.sample_fy[s] = pattern[s].dy / 16.0f;
+    draw.sample_x[s] = pattern[s].dx * (1 << (bits - 4));
+    draw.sample_y[s] = pattern[s].dy * (1 << (bits - 4));
+    draw.sample_fx[s] = pattern[s].dx / 16.0f;
+    draw.sample_fy[s] = pattern[s].dy / 16.0f;
   }
-  const DepthMode depth = !pipeline.depth_test ? DepthMode::kOff
+  const DepthMode depth = !pipeline.depth_test   ? DepthMode::kOff
                           : pipeline.depth_write ? DepthMode::kTestWrite
                                                  : DepthMode::kTest;
-  const ColorMode color = !pipeline.color_write ? ColorMode::kOff
+  const ColorMode color = !pipeline.color_write                         ? ColorMode::kOff
                           : fb.desc.color_format == ColorFormat::kRGBA8 ? ColorMode::kRGBA8
                                                                         : ColorMode::kRGBA32F;
-  const bool multi = samples > 1;
-  tds.kernel = block_kernel(*st.kernels, depth, color, multi);
-  tds.accept_kernel = block_kernel(
-      *st.kernels, pipeline.depth_write ? DepthMode::kWrite : DepthMode::kOff, color, multi);
-  tds.compare = pipeline.depth_compare;
-  tds.depth_write = pipeline.depth_write;
-  tds.hiz = pipeline.depth_test &&
-            (k.compare == CompareOp::kLess || k.compare == CompareOp::kLessEqual ||
-             k.compare == CompareOp::kGreater || k.compare == CompareOp::kGreaterEqual);
+  const TriangleKernel kernel = triangle_kernel(*st.kernels, depth, color, samples > 1);
+  const CompareOp op = pipeline.depth_compare;
+  draw.hiz = pipeline.depth_test && (op == CompareOp::kLess || op == CompareOp::kLessEqual ||
+                                     op == CompareOp::kGreater || op == CompareOp::kGreaterEqual);
   if (pipeline.depth_test && !fb.hiz_valid) rebuild_hiz(arena, fb);
 
   SetupContext ctx;
@@ -131,8 +127,8 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
 
   const uint32_t threads = static_cast<uint32_t>(arena.max_concurrency());
-  const size_t chunk_count = std::clamp<size_t>(triangles / kMinChunkTriangles, 1,
-                                                threads <= 1 ? 1 : size_t{4} * threads);
+  const size_t chunk_count =
+      std::clamp<size_t>(triangles / kMinChunkTriangles, 1, threads <= 1 ? 1 : size_t{4} * threads);
   if (st.chunks.size() < chunk_count) st.chunks.resize(chunk_count);
   const uint64_t chunk_budget = std::max<uint64_t>(st.budget / chunk_count, 1);
   st.tile_counters.assign(grid.tile_count(), Counters{});
@@ -194,7 +190,8 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     // Everything up to the first chunk that stopped early is complete and in order; later
     // chunks are redone in the next pass.
     size_t used = 0;
-    while (used < chunk_count && st.chunks[used].stopped_at == st.chunks[used].end) ++used;
+    while (used < chunk_count && st.chunks[used].stopped_at == st.chunks[used].end)
+      ++used;
     const size_t last = std::min(used, chunk_count - 1);
     const size_t kept = last + 1;
     std::vector<ChunkView> views(kept);
@@ -213,7 +210,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       tbb::parallel_for(tbb::blocked_range<uint32_t>(0, grid.tile_count(), 1),
                         [&](const tbb::blocked_range<uint32_t>& r) {
                           for (uint32_t tile = r.begin(); tile != r.end(); ++tile) {
-                            raster_tile(tds, tile, views, st.tile_counters[tile]);
+                            raster_tile(draw, kernel, fb, tile, views, st.tile_counters[tile]);
                           }
                         });
     });

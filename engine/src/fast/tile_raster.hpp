@@ -1,6 +1,5 @@
-// Rasterization of one screen tile: every binned triangle in submission order, through the
-// hierarchy tile -> 8x8 block (corner tests of the edge functions: trivial reject, trivial
-// accept, partial), the Hi-Z test per block, then the SIMD block kernel.
+// Rasterization of one screen tile: every binned triangle in submission order, handed to the
+// draw's raster kernel (block_kernel.hpp), which walks the tile's 8x8 blocks under it.
 #pragma once
 
 #include <cstdint>
@@ -19,18 +18,8 @@ struct ChunkView {
   const binning::Bins* bins = nullptr;
 };
 
-struct TileDrawState {
-  detail::FramebufferStorage* fb = nullptr;
-  uint32_t subpixel_bits = 8;
-  KernelConstants constants;
-  BlockKernel kernel = nullptr;         // the draw's state
-  BlockKernel accept_kernel = nullptr;  // DepthMode::kWrite: blocks Hi-Z proved all-passing
-  bool hiz = false;                     // Hi-Z reject/accept in use for this draw
-  CompareOp compare = CompareOp::kLess;
-  bool depth_write = false;
-};
-
-void raster_tile(const TileDrawState& state, uint32_t tile, std::span<const ChunkView> chunks,
-                 Counters& counters);
+// `draw` holds the per-draw fields of TileContext; raster_tile fills in the tile's own.
+void raster_tile(const TileContext& draw, TriangleKernel kernel, detail::FramebufferStorage& fb,
+                 uint32_t tile, std::span<const ChunkView> chunks, Counters& counters);
 
 }  // namespace tessera::fast

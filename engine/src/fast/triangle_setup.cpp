@@ -85,7 +85,7 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v,
   const int64_t cy = (int64_t{t.y0} * 16 + 8) << shift;
   const double inv_area = 1.0 / static_cast<double>(area);
   const double pixel = std::ldexp(1.0, bits);
-  std::array<double, 3> weight0;  // barycentrics at the origin pixel centre
+  std::array<double, 3> weight0;   // barycentrics at the origin pixel centre
   std::array<double, 3> wdx, wdy;  // their gradients per pixel
   for (int k = 0; k < 3; ++k) {
     const Snapped& from = v[(k + 1) % 3];
@@ -107,7 +107,8 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v,
   std::array<double, 3> q{1.0, 1.0, 1.0};
   if (p.interpolation == Interpolation::kPerspective) {
     const double q_max = std::max({v[0].inv_w, v[1].inv_w, v[2].inv_w});
-    for (int k = 0; k < 3; ++k) q[k] = v[k].inv_w / q_max;
+    for (int k = 0; k < 3; ++k)
+      q[k] = v[k].inv_w / q_max;
   }
   plane(q, t.q0, t.q_dx, t.q_dy);
   for (int c = 0; c < 4; ++c) {
@@ -140,8 +141,10 @@ void setup_triangle(const SetupContext& ctx, const std::array<ClipVertex, 3>& tr
     return;
   }
   std::array<Snapped, kMaxClipVertices> s;
-  for (int i = 0; i < polygon.count; ++i) s[i] = snap(polygon.vertices[i], ctx);
-  for (int i = 1; i + 1 < polygon.count; ++i) setup_snapped(ctx, {s[0], s[i], s[i + 1]}, out, counters);
+  for (int i = 0; i < polygon.count; ++i)
+    s[i] = snap(polygon.vertices[i], ctx);
+  for (int i = 1; i + 1 < polygon.count; ++i)
+    setup_snapped(ctx, {s[0], s[i], s[i + 1]}, out, counters);
 }
 
 }  // namespace tessera::fast

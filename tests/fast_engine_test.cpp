@@ -1,0 +1,457 @@
+// The fast engine against the reference rasterizer, for every SIMD target this machine runs
+// and for 1, 2 and 3 threads: coverage identical bit for bit, depth within kDepthUlps, colour
+// within one 8-bit step, and images byte-identical across thread counts, runs and targets.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "engine/src/fast/block_kernel.hpp"
+#include "simd/dispatch.hpp"
+#include "tessera/tessera.hpp"
+
+namespace tessera {
+namespace {
+
+// Largest difference between the fast engine's depth and the reference's, in units of 2^-24
+// (one float ulp just below 1.0, the top of the depth range). The reference evaluates z/w in
+// double at each sample; the fast engine evaluates the depth plane in float from the corner of
+// each 8x8 block, a few roundings of terms bounded by the depth range, so its error is absolute
+// rather than relative to the (possibly tiny) depth value. The worst seen in these tests is 2.
+constexpr double kDepthTolerance = 4.0;
+
+struct Config {
+  SimdTarget target;
+  uint32_t threads;
+};
+
+std::string config_name(const testing::TestParamInfo<Config>& info) {
+  const char* names[] = {"auto", "scalar", "sse4", "avx2", "avx512", "neon", "sve"};
+  return std::string(names[static_cast<int>(info.param.target)]) + "_threads" +
+         std::to_string(info.param.threads);
+}
+
+std::vector<Config> all_configs() {
+  std::vector<Config> configs;
+  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
+                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
+    if (!simd::is_available(t)) continue;
+    for (uint32_t threads : {1u, 2u, 3u})
+      configs.push_back({t, threads});
+  }
+  return configs;
+}
+
+// A draw: clip-space positions (three per triangle), four colour floats per vertex.
+struct Scene {
+  uint32_t width = 136;  // three tiles across, the last one partial
+  uint32_t height = 72;  // two tiles down
+  uint32_t samples = 1;
+  ColorFormat format = ColorFormat::kRGBA8;
+  PipelineState pipeline;
+  std::vector<Float4> positions;
+  std::vector<float> colors;
+
+  // Appends a triangle given in window pixels (y down) with depth z/w and clip w per vertex.
+  void add(const float (&x)[3], const float (&y)[3], const float (&z)[3], const float (&w)[3],
+           const float (&rgba)[3][4]) {
+    for (int k = 0; k < 3; ++k) {
+      positions.push_back({(2.0f * x[k] / static_cast<float>(width) - 1.0f) * w[k],
+                           (1.0f - 2.0f * y[k] / static_cast<float>(height)) * w[k], z[k] * w[k],
+                           w[k]});
+      colors.insert(colors.end(), rgba[k], rgba[k] + 4);
+    }
+  }
+};
+
+struct Result {
+  std::vector<uint8_t> rgba8;
+  std::vector<float> rgba32f;
+  std::vector<float> depth;  // every sample
+  Counters counters;
+};
+
+Result render(const Scene& scene, Backend backend, const Config& config = {SimdTarget::kAuto, 1},
+              uint64_t budget = kDefaultBinMemoryBudget) {
+  RendererOptions options;
+  options.backend = backend;
+  options.threads = config.threads;
+  options.simd = config.target;
+  options.bin_memory_budget = budget;
+  Renderer renderer(options);
+  Framebuffer fb({scene.width, scene.height, scene.samples, scene.format});
+  fb.clear_color({0.1f, 0.2f, 0.3f, 1.0f});
+  DrawInput input;
+  input.positions = scene.positions;
+  input.attributes = scene.colors;
+  input.attribute_count = 4;
+  renderer.draw(fb, scene.pipeline, input);
+  Result r;
+  r.rgba8 = fb.read_rgba8();
+  if (scene.format == ColorFormat::kRGBA32F) r.rgba32f = fb.read_rgba32f();
+  r.depth = fb.read_sample_depth();
+  r.counters = renderer.counters();
+  return r;
+}
+
+// Random triangles of about `area` pixels, centred anywhere on the screen or a little beyond.
+// With flat_depth, triangle i has the constant depth (i + 1) / 2^15, so a sample's final depth
+// under CompareOp::kAlways names the last triangle that covered it.
+Scene soup(uint32_t seed, int count, float area, bool flat_depth, bool perspective = false) {
+  Scene s;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const float side = std::sqrt(4.0f * area / std::sqrt(3.0f));
+  for (int i = 0; i < count; ++i) {
+    const float cx = (u(rng) * 1.2f - 0.1f) * static_cast<float>(s.width);
+    const float cy = (u(rng) * 1.2f - 0.1f) * static_cast<float>(s.height);
+    const float rot = u(rng) * 2.0f * std::numbers::pi_v<float>;
+    float x[3], y[3], z[3], w[3], c[3][4];
+    for (int k = 0; k < 3; ++k) {
+      const float a = rot + static_cast<float>(k) * 2.0f * std::numbers::pi_v<float> / 3.0f +
+                      (u(rng) - 0.5f) * 0.7f;
+      const float r = side / std::sqrt(3.0f) * (0.8f + 0.4f * u(rng));
+      x[k] = cx + r * std::cos(a);
+      y[k] = cy + r * std::sin(a);
+      z[k] = flat_depth ? static_cast<float>(i + 1) / 32768.0f : u(rng);
+      w[k] = perspective ? 0.25f + 4.0f * u(rng) : 1.0f;
+      for (int ch = 0; ch < 4; ++ch)
+        c[k][ch] = u(rng);
+    }
+    if (i % 2) std::swap(x[1], x[2]), std::swap(y[1], y[2]);  // both windings
+    s.add(x, y, z, w, c);
+  }
+  if (flat_depth) s.pipeline.depth_compare = CompareOp::kAlways;
+  return s;
+}
+
+void expect_same_coverage(const Result& fast, const Result& ref, const std::string& what) {
+  ASSERT_EQ(fast.depth.size(), ref.depth.size());
+  size_t mismatches = 0, first = 0;
+  for (size_t i = 0; i < ref.depth.size(); ++i) {
+    if (std::memcmp(&fast.depth[i], &ref.depth[i], sizeof(float)) != 0 && mismatches++ == 0) {
+      first = i;
+    }
+  }
+  EXPECT_EQ(mismatches, 0u) << what << ": first differing sample " << first << " fast "
+                            << fast.depth[first] << " reference " << ref.depth[first];
+  EXPECT_EQ(fast.counters.samples_covered, ref.counters.samples_covered) << what;
+}
+
+// |a - b| in units of 2^-24.
+double depth_error(float a, float b) {
+  return std::ldexp(std::abs(double{a} - double{b}), 24);
+}
+
+class FastEngine : public testing::TestWithParam<Config> {};
+
+TEST_P(FastEngine, CoverageMatchesReferenceInEverySizeClass) {
+  // Sub-pixel to larger than the 136x72 screen.
+  const float areas[] = {0.2f, 2.0f, 16.0f, 128.0f, 2048.0f, 20000.0f};
+  for (size_t c = 0; c < std::size(areas); ++c) {
+    const Scene s = soup(100 + static_cast<uint32_t>(c), 10000, areas[c], true);
+    expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
+                         "area " + std::to_string(areas[c]));
+  }
+}
+
+TEST_P(FastEngine, CoverageMatchesReferenceForEveryMsaaCount) {
+  for (uint32_t samples : {2u, 4u, 8u, 16u}) {
+    Scene s = soup(200 + samples, 2000, 24.0f, true);
+    s.samples = samples;
+    expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
+                         std::to_string(samples) + " samples");
+  }
+}
+
+TEST_P(FastEngine, CoverageMatchesReferenceForEverySubpixelPrecision) {
+  for (uint32_t bits = kMinSubpixelBits; bits <= kMaxSubpixelBits; ++bits) {
+    Scene s = soup(300 + bits, 3000, 10.0f, true);
+    s.pipeline.subpixel_bits = bits;
+    s.samples = bits % 2 ? 4 : 1;
+    expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
+                         std::to_string(bits) + " subpixel bits");
+  }
+}
+
+TEST_P(FastEngine, CoverageMatchesReferenceOnPixelCentresAndTileAndBlockBoundaries) {
+  Scene s;
+  std::mt19937 rng(7);
+  // Vertices on pixel centres, pixel corners, block (8 px) and tile (64 px) lines.
+  const float grid[] = {0.0f,  0.5f,  7.5f,  8.0f,  8.5f,   15.5f,  16.0f,  63.5f,
+                        64.0f, 64.5f, 71.5f, 72.0f, 100.5f, 128.0f, 135.5f, 136.0f};
+  std::uniform_int_distribution<size_t> pick(0, std::size(grid) - 1);
+  for (int i = 0; i < 6000; ++i) {
+    float x[3], y[3], z[3], w[3] = {1, 1, 1}, c[3][4] = {};
+    for (int k = 0; k < 3; ++k) {
+      x[k] = grid[pick(rng)];
+      y[k] = std::min(grid[pick(rng)], 72.0f);
+      z[k] = static_cast<float>(i + 1) / 32768.0f;
+    }
+    s.add(x, y, z, w, c);
+  }
+  s.pipeline.depth_compare = CompareOp::kAlways;
+  for (uint32_t samples : {1u, 4u}) {
+    s.samples = samples;
+    expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
+                         std::to_string(samples) + " samples");
+  }
+}
+
+TEST_P(FastEngine, CoverageMatchesReferenceOnLongSlivers) {
+  Scene s;
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < 3000; ++i) {
+    // A long edge across the screen and a third vertex a fraction of a pixel off it.
+    const float x0 = u(rng) * 200 - 30, y0 = u(rng) * 120 - 20;
+    const float x1 = u(rng) * 200 - 30, y1 = u(rng) * 120 - 20;
+    const float t = u(rng), off = (u(rng) - 0.5f) * 0.6f;
+    const float len = std::hypot(x1 - x0, y1 - y0) + 1e-3f;
+    const float x[3] = {x0, x1, x0 + t * (x1 - x0) - off * (y1 - y0) / len};
+    const float y[3] = {y0, y1, y0 + t * (y1 - y0) + off * (x1 - x0) / len};
+    const float z[3] = {static_cast<float>(i + 1) / 32768.0f, static_cast<float>(i + 1) / 32768.0f,
+                        static_cast<float>(i + 1) / 32768.0f};
+    const float w[3] = {1, 1, 1}, c[3][4] = {};
+    s.add(x, y, z, w, c);
+  }
+  s.pipeline.depth_compare = CompareOp::kAlways;
+  expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
+                       "slivers");
+}
+
+TEST_P(FastEngine, CoverageMatchesReferenceAtAndPastTheThirtyTwoBitStepLimit) {
+  // Edge steps |a| + |b| just below, at and above narrow_edge_limit (4096 px at 8 bits): the
+  // triangles reach far into the guard band while crossing the small screen.
+  Scene s;
+  const float limit_px = static_cast<float>(fast::narrow_edge_limit(8)) / 256.0f;
+  int i = 0;
+  for (float span :
+       {limit_px - 1.0f, limit_px - 1.0f / 256.0f, limit_px, limit_px + 3.0f, 3.0f * limit_px}) {
+    for (float offset : {-0.3f, 0.0f, 17.25f, 40.5f}) {
+      const float x[3] = {68.0f - span / 2 + offset, 68.0f + span / 2 + offset, 70.0f};
+      const float y[3] = {10.0f + offset / 4, 30.0f, 60.0f - offset / 8};
+      const float z = static_cast<float>(++i) / 32768.0f;
+      const float zz[3] = {z, z, z}, w[3] = {1, 1, 1}, c[3][4] = {};
+      s.add(x, y, zz, w, c);
+    }
+  }
+  s.pipeline.depth_compare = CompareOp::kAlways;
+  for (uint32_t samples : {1u, 8u}) {
+    s.samples = samples;
+    expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
+                         std::to_string(samples) + " samples");
+  }
+}
+
+TEST_P(FastEngine, NearPlaneCrossingsMatchReference) {
+  Scene s;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int i = 0; i < 3000; ++i) {
+    const float z = static_cast<float>(i + 1) / 32768.0f;
+    for (int k = 0; k < 3; ++k) {
+      // w and z (0..w convention) chosen so that some vertices lie behind the eye or in front of
+      // the near plane; the visible depth is flattened by giving every vertex the same z/w.
+      const float w = u(rng) * 3.0f;
+      s.positions.push_back({u(rng) * 2.0f, u(rng) * 2.0f, w < 0 ? -0.5f : z * w, w});
+      for (int ch = 0; ch < 4; ++ch)
+        s.colors.push_back(0.5f + 0.5f * u(rng));
+    }
+  }
+  s.pipeline.depth_compare = CompareOp::kAlways;
+  s.pipeline.depth_write = true;
+  const Result fast = render(s, Backend::kFast, GetParam());
+  const Result ref = render(s, Backend::kReference);
+  EXPECT_GT(ref.counters.triangles_clipped, 100u);
+  EXPECT_EQ(fast.counters.triangles_clipped, ref.counters.triangles_clipped);
+  // Depth is not flat here (clipping moves vertices), so compare colour and depth by tolerance.
+  for (size_t i = 0; i < ref.rgba8.size(); ++i) {
+    ASSERT_LE(std::abs(int{fast.rgba8[i]} - int{ref.rgba8[i]}), 1) << "byte " << i;
+  }
+  for (size_t i = 0; i < ref.depth.size(); ++i) {
+    ASSERT_LE(depth_error(fast.depth[i], ref.depth[i]), kDepthTolerance) << "sample " << i;
+  }
+}
+
+TEST_P(FastEngine, DepthWithinToleranceOfReference) {
+  for (bool perspective : {false, true}) {
+    for (uint32_t samples : {1u, 4u}) {
+      Scene s = soup(400 + samples, 4000, 60.0f, false, perspective);
+      s.samples = samples;
+      const Result fast = render(s, Backend::kFast, GetParam());
+      const Result ref = render(s, Backend::kReference);
+      double worst = 0;
+      for (size_t i = 0; i < ref.depth.size(); ++i) {
+        worst = std::max(worst, depth_error(fast.depth[i], ref.depth[i]));
+      }
+      EXPECT_LE(worst, kDepthTolerance) << samples << " samples, perspective " << perspective;
+      std::printf("worst depth error %.2f x 2^-24 (%u samples, perspective %d)\n", worst, samples,
+                  perspective);
+    }
+  }
+}
+
+TEST_P(FastEngine, ColorWithinOneStepOfReference) {
+  for (ColorFormat format : {ColorFormat::kRGBA8, ColorFormat::kRGBA32F}) {
+    for (Interpolation interpolation : {Interpolation::kPerspective, Interpolation::kAffine}) {
+      Scene s = soup(500, 3000, 80.0f, true, true);
+      s.format = format;
+      s.samples = format == ColorFormat::kRGBA8 ? 4 : 1;
+      s.pipeline.interpolation = interpolation;
+      const Result fast = render(s, Backend::kFast, GetParam());
+      const Result ref = render(s, Backend::kReference);
+      for (size_t i = 0; i < ref.rgba8.size(); ++i) {
+        ASSERT_LE(std::abs(int{fast.rgba8[i]} - int{ref.rgba8[i]}), 1) << "byte " << i;
+      }
+      for (size_t i = 0; i < ref.rgba32f.size(); ++i) {
+        ASSERT_NEAR(fast.rgba32f[i], ref.rgba32f[i], 1.0f / 255.0f) << "value " << i;
+      }
+    }
+  }
+}
+
+TEST_P(FastEngine, WatertightGridCoversEverySampleExactlyOnce) {
+  // A jittered grid of 1,000,000 triangles (708 x 708 cells, two triangles each) over a 4-sample
+  // framebuffer: the samples covered add up to exactly the samples of the screen and none is left
+  // uncovered, so each is covered exactly once.
+  Scene s;
+  s.width = 320;
+  s.height = 200;
+  s.samples = 4;
+  const int n = 709;  // vertices per side
+  std::mt19937 rng(10);
+  // Each vertex moves at most 0.2 cells per axis: a triangle's vertex stays at least
+  // 0.707 - 2 * 0.283 > 0 cells from its opposite edge, so no triangle folds over.
+  std::uniform_real_distribution<float> jitter(-0.2f, 0.2f);
+  std::vector<Float4> v(static_cast<size_t>(n) * n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const bool border = i == 0 || j == 0 || i == n - 1 || j == n - 1;
+      const float fx = (static_cast<float>(i) + (border ? 0.0f : jitter(rng))) / (n - 1);
+      const float fy = (static_cast<float>(j) + (border ? 0.0f : jitter(rng))) / (n - 1);
+      // Slight perspective: w varies across the grid, positions stay on the same screen spot.
+      const float w = 1.0f + fx;
+      v[static_cast<size_t>(j) * n + i] = {(2 * fx - 1) * w, (1 - 2 * fy) * w, 0.5f * w, w};
+    }
+  }
+  std::vector<uint32_t> indices;
+  for (int j = 0; j + 1 < n; ++j) {
+    for (int i = 0; i + 1 < n; ++i) {
+      const uint32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+      indices.insert(indices.end(), {a, b, d, a, d, c});
+    }
+  }
+  ASSERT_GE(indices.size() / 3, 1000000u);
+  RendererOptions options;
+  options.backend = Backend::kFast;
+  options.threads = GetParam().threads;
+  options.simd = GetParam().target;
+  Renderer renderer(options);
+  Framebuffer fb({s.width, s.height, s.samples, ColorFormat::kRGBA8});
+  fb.clear_depth(1.0f);
+  PipelineState p;
+  p.depth_compare = CompareOp::kAlways;
+  renderer.draw(fb, p, {v, {}, 0, indices});
+  EXPECT_EQ(renderer.counters().samples_covered, uint64_t{s.width} * s.height * s.samples);
+  const std::vector<float> depth = fb.read_sample_depth();
+  EXPECT_EQ(std::count(depth.begin(), depth.end(), 1.0f), 0);
+}
+
+TEST_P(FastEngine, ImagesAreByteIdenticalAcrossThreadsRunsAndTargets) {
+  Scene s = soup(600, 20000, 40.0f, false, true);
+  s.samples = 4;
+  const Result baseline = render(s, Backend::kFast, {SimdTarget::kScalar, 1});
+  for (int run = 0; run < 2; ++run) {
+    const Result r = render(s, Backend::kFast, GetParam());
+    EXPECT_EQ(r.rgba8, baseline.rgba8) << "run " << run;
+    EXPECT_EQ(0, std::memcmp(r.depth.data(), baseline.depth.data(), r.depth.size() * 4))
+        << "run " << run;
+  }
+}
+
+TEST_P(FastEngine, SmallBinBudgetRendersInPassesWithTheSameImage) {
+  Scene s = soup(700, 20000, 30.0f, false);
+  const Result whole = render(s, Backend::kFast, GetParam());
+  const Result passes = render(s, Backend::kFast, GetParam(), 64 << 10);
+  EXPECT_EQ(whole.counters.bin_passes, 1u);
+  EXPECT_GT(passes.counters.bin_passes, 4u);
+  EXPECT_EQ(passes.rgba8, whole.rgba8);
+  EXPECT_EQ(0, std::memcmp(passes.depth.data(), whole.depth.data(), whole.depth.size() * 4));
+  EXPECT_EQ(passes.counters.samples_passed, whole.counters.samples_passed);
+}
+
+TEST_P(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
+  Scene s;
+  // A screen-filling pair of triangles in front, then many small triangles behind it.
+  const float c[3][4] = {{1, 0, 0, 1}, {1, 0, 0, 1}, {1, 0, 0, 1}};
+  const float w[3] = {1, 1, 1}, zf[3] = {0.1f, 0.1f, 0.1f};
+  s.add({0, 136, 0}, {0, 0, 72}, zf, w, c);
+  s.add({136, 136, 0}, {0, 72, 72}, zf, w, c);
+  const Scene behind = soup(800, 5000, 30.0f, false);
+  for (size_t i = 0; i < behind.positions.size(); ++i) {
+    Float4 p = behind.positions[i];
+    p.z = 0.2f + 0.7f * p.z;  // every depth behind the front quad
+    s.positions.push_back(p);
+  }
+  s.colors.insert(s.colors.end(), behind.colors.begin(), behind.colors.end());
+  const Result fast = render(s, Backend::kFast, GetParam());
+  const Result ref = render(s, Backend::kReference);
+  EXPECT_GT(fast.counters.hiz_rejected, 5000u);
+  EXPECT_EQ(fast.rgba8, ref.rgba8);
+  EXPECT_EQ(0, std::memcmp(fast.depth.data(), ref.depth.data(), ref.depth.size() * 4));
+}
+
+TEST_P(FastEngine, DepthOnlyDrawWritesNoColourAndCulledTrianglesDrawNothing) {
+  Scene s = soup(900, 2000, 50.0f, false);
+  s.pipeline.color_write = false;
+  const Result depth_only = render(s, Backend::kFast, GetParam());
+  const Result ref = render(s, Backend::kReference);
+  EXPECT_EQ(depth_only.counters.pixels_shaded, 0u);
+  for (size_t i = 0; i < depth_only.rgba8.size(); i += 4) {
+    ASSERT_EQ(depth_only.rgba8[i], 26);  // the clear colour 0.1 * 255, rounded
+  }
+  for (size_t i = 0; i < ref.depth.size(); ++i) {
+    ASSERT_LE(depth_error(depth_only.depth[i], ref.depth[i]), kDepthTolerance);
+  }
+  for (CullMode cull : {CullMode::kBack, CullMode::kFront}) {
+    for (FrontFace front : {FrontFace::kCounterClockwise, FrontFace::kClockwise}) {
+      Scene c = soup(901, 2000, 50.0f, true);
+      c.pipeline.cull = cull;
+      c.pipeline.front_face = front;
+      const Result f = render(c, Backend::kFast, GetParam());
+      const Result r = render(c, Backend::kReference);
+      expect_same_coverage(f, r, "culling");
+      EXPECT_GT(f.counters.triangles_culled, 900u);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllTargetsAndThreadCounts, FastEngine, testing::ValuesIn(all_configs()),
+                         config_name);
+
+TEST(FastEngineOptions, ForcingAnUnsupportedOrUnknownTargetIsAnError) {
+  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
+                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
+    RendererOptions o;
+    o.backend = Backend::kFast;
+    o.simd = t;
+    if (simd::is_available(t)) {
+      EXPECT_NO_THROW(Renderer{o});
+    } else {
+      EXPECT_THROW(Renderer{o}, Error);
+    }
+  }
+  RendererOptions tiny_budget;
+  tiny_budget.bin_memory_budget = 1000;
+  EXPECT_THROW(Renderer{tiny_budget}, Error);
+}
+
+}  // namespace
+}  // namespace tessera
