@@ -27,7 +27,7 @@ inline constexpr uint64_t kDefaultBinMemoryBudget = uint64_t{256} << 20;
 
 struct RendererOptions {
   uint32_t threads = 1;  // worker threads of the renderer's arena; 1 = fully serial, 0 = all cores
-  Backend backend = Backend::kReference;
+  Backend backend = Backend::kFast;
   SimdTarget simd = SimdTarget::kAuto;
   uint64_t bin_memory_budget = kDefaultBinMemoryBudget;  // bytes, at least 64 KiB
 };

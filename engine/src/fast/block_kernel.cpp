@@ -95,21 +95,6 @@ HWY_INLINE auto to_unorm8(DF df, VF c) {
   return hn::BitCast(du, hn::ConvertTo(hn::RebindToSigned<DF>(), scaled));
 }
 
-// Conservative depth range of the triangle's plane over a block's sample area, widened by a
-// margin that covers the kernel's float rounding (a few ulps of the terms it adds).
-void block_depth_range(const TriangleSetup& t, int32_t bx, int32_t by, float& lo, float& hi) {
-  const double x_lo = bx * 8.0 - t.x0 - 0.5, x_hi = x_lo + 8.0;
-  const double y_lo = by * 8.0 - t.y0 - 0.5, y_hi = y_lo + 8.0;
-  const double zx_lo = t.z_dx * x_lo, zx_hi = t.z_dx * x_hi;
-  const double zy_lo = t.z_dy * y_lo, zy_hi = t.z_dy * y_hi;
-  const double margin =
-      1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
-  lo = static_cast<float>(
-      std::max<double>(t.z0 + std::min(zx_lo, zx_hi) + std::min(zy_lo, zy_hi), t.z_min) - margin);
-  hi = static_cast<float>(
-      std::min<double>(t.z0 + std::max(zx_lo, zx_hi) + std::max(zy_lo, zy_hi), t.z_max) + margin);
-}
-
 enum class HizVerdict { kTest, kReject, kAccept };
 
 // Whether every sample of a block fails (reject) or passes (accept) the depth test, from the
@@ -157,6 +142,33 @@ void wide_coverage(const TriangleSetup& t, const TileContext& tc, int32_t bx, in
   }
 }
 
+// Hi-Z bounds of a block whose depth changed since they were last computed ("dirty": marked
+// by min > max). Writers only mark blocks; a Hi-Z test recomputes the bounds from the block's
+// samples when it needs them, so triangles that never test Hi-Z never pay for it.
+inline bool hiz_dirty(const TileContext& tc, size_t block) {
+  return !(tc.hiz_min[block] <= tc.hiz_max[block]);
+}
+inline void mark_hiz_dirty(const TileContext& tc, size_t block) {
+  tc.hiz_min[block] = std::numeric_limits<float>::infinity();
+  tc.hiz_max[block] = -std::numeric_limits<float>::infinity();
+}
+
+void refresh_hiz(const TileContext& tc, size_t block, uint32_t samples) {
+  const hn::ScalableTag<float> df;
+  const float* depth = tc.depth + block * 64;
+  auto lo = hn::Set(df, std::numeric_limits<float>::infinity());
+  auto hi = hn::Set(df, -std::numeric_limits<float>::infinity());
+  for (uint32_t s = 0; s < samples; ++s) {
+    for (size_t i = 0; i < 64; i += hn::Lanes(df)) {
+      const auto z = hn::Load(df, depth + s * kSamplePlane + i);
+      lo = hn::Min(lo, z);
+      hi = hn::Max(hi, z);
+    }
+  }
+  tc.hiz_min[block] = hn::GetLane(hn::MinOfLanes(df, lo));
+  tc.hiz_max[block] = hn::GetLane(hn::MaxOfLanes(df, hi));
+}
+
 template <DepthMode kDepth, ColorMode kColor, bool kMulti>
 void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
   const hn::ScalableTag<int32_t> di;
@@ -196,26 +208,52 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
   }
   alignas(64) uint32_t coverage_bits[64];
 
-  for (int32_t by = py0 >> 3; by <= (py1 >> 3); ++by) {
-    for (int32_t bx = px0 >> 3; bx <= (px1 >> 3); ++bx) {
-      // The block's sample area in fixed point: pixel x holds samples from x + 0/16 to
-      // x + 15/16.
-      const int64_t x_lo = (int64_t{bx} * 8 * 16) << shift;
-      const int64_t x_hi = ((int64_t{bx} * 8 + 7) * 16 + 15) << shift;
-      const int64_t y_lo = (int64_t{by} * 8 * 16) << shift;
-      const int64_t y_hi = ((int64_t{by} * 8 + 7) * 16 + 15) << shift;
+  // Block classification, stepped from block to block. A block's sample area spans
+  // [x_lo, x_lo + span] in fixed point (pixel x holds samples from x + 0/16 to x + 15/16), so an
+  // edge's largest and smallest values over it are E(x_lo, y_lo) plus the positive or
+  // negative parts of a * span and b * span (Abrash 2009).
+  const int32_t bx0 = px0 >> 3, by0 = py0 >> 3, bx1 = px1 >> 3, by1 = py1 >> 3;
+  const int64_t span = int64_t{7 * 16 + 15} << shift;
+  const int64_t block_step = int64_t{8 * 16} << shift;
+  int64_t corner_row[3], max_offset[3], min_offset[3], step_bx[3], step_by[3];
+  for (int e = 0; e < 3; ++e) {
+    corner_row[e] = t.a[e] * (bx0 * block_step) + t.b[e] * (by0 * block_step) + t.c[e];
+    max_offset[e] = std::max<int64_t>(t.a[e] * span, 0) + std::max<int64_t>(t.b[e] * span, 0);
+    min_offset[e] = std::min<int64_t>(t.a[e] * span, 0) + std::min<int64_t>(t.b[e] * span, 0);
+    step_bx[e] = t.a[e] * block_step;
+    step_by[e] = t.b[e] * block_step;
+  }
+  const int64_t corner_to_centre = int64_t{8} << shift;  // first sample area corner -> centre
+  // Depth over a block's sample area (pixel coordinates relative to the plane origin, the
+  // centre of pixel (x0, y0)), widened by a margin that covers the kernel's float rounding.
+  const double z_margin =
+      1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
+  const double z_lo_offset = std::min(0.0, 8.0 * t.z_dx) + std::min(0.0, 8.0 * t.z_dy) - z_margin;
+  const double z_hi_offset = std::max(0.0, 8.0 * t.z_dx) + std::max(0.0, 8.0 * t.z_dy) + z_margin;
+
+  // Small triangles (under 16 px across) skip the block tests and Hi-Z: for the few blocks they
+  // touch, testing every edge costs less than classifying. Every sample of those blocks lies
+  // within 32 px of each vertex and |a|, |b| < 2^(bits+4), so |E| < 2^(2 bits + 10): all three
+  // edges step exactly in int32, not only the ones crossing the block.
+  const bool small = t.small;
+
+  for (int32_t by = by0; by <= by1; ++by) {
+    int64_t corner[3] = {corner_row[0], corner_row[1], corner_row[2]};
+    for (int e = 0; e < 3; ++e)
+      corner_row[e] += step_by[e];
+    for (int32_t bx = bx0; bx <= bx1; ++bx) {
       uint32_t edge_mask = 0;
       bool rejected = false;
+      int64_t block_corner[3];
       for (int e = 0; e < 3; ++e) {
-        const int64_t ax_lo = t.a[e] * x_lo, ax_hi = t.a[e] * x_hi;
-        const int64_t by_lo = t.b[e] * y_lo, by_hi = t.b[e] * y_hi;
-        if (std::max(ax_lo, ax_hi) + std::max(by_lo, by_hi) + t.c[e] < 0) {
-          rejected = true;
-          break;
-        }
-        if (std::min(ax_lo, ax_hi) + std::min(by_lo, by_hi) + t.c[e] < 0) edge_mask |= 1u << e;
+        block_corner[e] = corner[e];
+        corner[e] += step_bx[e];
+        rejected |= block_corner[e] + max_offset[e] < 0;
+        edge_mask |= block_corner[e] + min_offset[e] < 0 ? 1u << e : 0u;
       }
-      if (rejected) {
+      if (small) {
+        edge_mask = 7;
+      } else if (rejected) {
         ++counters.blocks_rejected;
         continue;
       }
@@ -230,10 +268,16 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
         ++counters.blocks_partial;
       }
 
+      // The depth plane at the corner of the block's sample area.
+      const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;
+      const double z_corner = t.z0 + t.z_dx * (dx - 0.5) + t.z_dy * (dy - 0.5);
       bool test_depth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
-      if (tc.hiz) {
-        float lo, hi;
-        block_depth_range(t, bx, by, lo, hi);
+      if (tc.hiz && !small) {
+        if (hiz_dirty(tc, block)) refresh_hiz(tc, block, samples);
+        const float lo =
+            static_cast<float>(std::max<double>(z_corner + z_lo_offset, t.z_min - z_margin));
+        const float hi =
+            static_cast<float>(std::min<double>(z_corner + z_hi_offset, t.z_max + z_margin));
         const HizVerdict verdict =
             hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]);
         if (verdict == HizVerdict::kReject) {
@@ -248,17 +292,22 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
 
       const bool wide = edge_mask != 0 && !t.narrow;
       if (wide) wide_coverage(t, tc, bx, by, coverage_bits);
-      int32_t e_block[3] = {0, 0, 0};
-      const int64_t cx = (int64_t{bx} * 8 * 16 + 8) << shift;  // centre of the first pixel
-      const int64_t cy = (int64_t{by} * 8 * 16 + 8) << shift;
+      int32_t e_block[3] = {0, 0, 0};  // at the centre of the block's first pixel
       for (int e = 0; e < 3; ++e) {
         // Only edges crossing the block are stepped; they fit 32 bits (block_kernel.hpp).
         if (!wide && (edge_mask & (1u << e))) {
-          e_block[e] = static_cast<int32_t>(t.a[e] * cx + t.b[e] * cy + t.c[e]);
+          e_block[e] =
+              static_cast<int32_t>(block_corner[e] + (int64_t{t.a[e]} + t.b[e]) * corner_to_centre);
         }
       }
-      const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;
       const float z_base = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
+      float q_base = 0.0f, qa_base[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+      if constexpr (kColor != ColorMode::kOff) {
+        const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
+        q_base = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
+        for (int c = 0; c < 4; ++c)
+          qa_base[c] = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
+      }
       float* depth = tc.depth + block * 64;
 
       // Lane groups covering the rows of the block the triangle's bounding box touches.
@@ -268,12 +317,8 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       const size_t last =
           std::min<size_t>(64, (static_cast<size_t>(row_end) * 8 + lanes - 1) / lanes * lanes);
 
-      auto written_lo = hn::Set(df, std::numeric_limits<float>::infinity());
-      auto written_hi = hn::Set(df, -std::numeric_limits<float>::infinity());
-      auto overwrote_extreme = hn::FirstN(df, 0);
       bool wrote = false;
       uint32_t covered = 0, passed = 0, shaded = 0;
-      const float block_min = tc.hiz_min[block], block_max = tc.hiz_max[block];
 
       for (size_t i = first; i < last; i += lanes) {
         const auto fx = hn::Load(df, kPixels.fx + i);
@@ -315,18 +360,10 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
             if (test_depth) {
               const auto stored = hn::Load(df, plane);
               pass = hn::And(pass, depth_passes(df, tc.compare, z, stored));
-              if constexpr (kDepth == DepthMode::kTestWrite) {
-                overwrote_extreme =
-                    hn::Or(overwrote_extreme,
-                           hn::And(pass, hn::Or(hn::Ge(stored, hn::Set(df, block_max)),
-                                                hn::Le(stored, hn::Set(df, block_min)))));
-              }
             }
             if constexpr (kDepth == DepthMode::kTestWrite) {
               if (!hn::AllFalse(df, pass)) {
                 hn::BlendedStore(z, pass, df, plane);
-                written_lo = hn::Min(written_lo, hn::IfThenElse(pass, z, written_lo));
-                written_hi = hn::Max(written_hi, hn::IfThenElse(pass, z, written_hi));
                 wrote = true;
               }
             }
@@ -340,16 +377,11 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
           const auto any = hn::Ne(pass_bits, hn::Zero(du));
           if (hn::AllFalse(du, any)) continue;
           shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
-          const float q_base = static_cast<float>(t.q0 + t.q_dx * dx + t.q_dy * dy);
-          float qa_base[4];
-          for (int c = 0; c < 4; ++c) {
-            qa_base[c] = static_cast<float>(t.qa0[c] + t.qa_dx[c] * dx + t.qa_dy[c] * dy);
-          }
           auto r = plane_at(df, fx, fy, qa_base[0], t.qa_dx[0], t.qa_dy[0]);
           auto g = plane_at(df, fx, fy, qa_base[1], t.qa_dx[1], t.qa_dy[1]);
           auto b = plane_at(df, fx, fy, qa_base[2], t.qa_dx[2], t.qa_dy[2]);
           auto a = plane_at(df, fx, fy, qa_base[3], t.qa_dx[3], t.qa_dy[3]);
-          if (tc.perspective) {
+          if (!t.flat_q) {
             const auto q = plane_at(df, fx, fy, q_base, t.q_dx, t.q_dy);
             const auto inv_q = hn::Div(hn::Set(df, 1.0f), q);
             r = hn::Mul(r, inv_q);
@@ -415,32 +447,8 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       counters.samples_passed += passed;
       counters.pixels_shaded += shaded;
       if constexpr (kDepth == DepthMode::kTestWrite) {
-        if (wrote) {
-          // Keep the block's Hi-Z bounds: a full write without reads replaces them; otherwise
-          // they widen to the written values, and when a sample at a bound was overwritten
-          // the bounds are recomputed from the block's samples.
-          const float w_lo = hn::GetLane(hn::MinOfLanes(df, written_lo));
-          const float w_hi = hn::GetLane(hn::MaxOfLanes(df, written_hi));
-          if (!test_depth && samples * 64 == passed) {
-            tc.hiz_min[block] = w_lo;
-            tc.hiz_max[block] = w_hi;
-          } else if (!hn::AllFalse(df, overwrote_extreme) || !test_depth) {
-            auto lo = hn::Set(df, std::numeric_limits<float>::infinity());
-            auto hi = hn::Set(df, -std::numeric_limits<float>::infinity());
-            for (uint32_t s = 0; s < samples; ++s) {
-              for (size_t i = 0; i < 64; i += lanes) {
-                const auto z = hn::Load(df, depth + s * kSamplePlane + i);
-                lo = hn::Min(lo, z);
-                hi = hn::Max(hi, z);
-              }
-            }
-            tc.hiz_min[block] = hn::GetLane(hn::MinOfLanes(df, lo));
-            tc.hiz_max[block] = hn::GetLane(hn::MaxOfLanes(df, hi));
-          } else {
-            tc.hiz_min[block] = std::min(block_min, w_lo);
-            tc.hiz_max[block] = std::max(block_max, w_hi);
-          }
-        }
+        // The block's depth changed: its Hi-Z bounds are recomputed when next needed.
+        if (wrote) mark_hiz_dirty(tc, block);
       }
     }
   }

@@ -39,7 +39,6 @@ struct TileContext {
   uint32_t samples = 1;
   uint32_t subpixel_bits = 8;
   CompareOp compare = CompareOp::kLess;
-  bool perspective = true;
   bool hiz = false;  // Hi-Z reject/accept (the compare op is one of <, <=, >, >=)
   // Sample offsets from the pixel centre, in fixed point and in pixels.
   std::array<int32_t, 16> sample_x{}, sample_y{};

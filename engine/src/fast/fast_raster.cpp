@@ -7,6 +7,7 @@
 #include "engine/src/fast/fast_raster.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -33,28 +34,11 @@ struct Chunk {
   size_t stopped_at = 0;      // first triangle not binned (== end when all were)
 };
 
-// Rebuilds every block's Hi-Z bounds from the depth samples.
-void rebuild_hiz(tbb::task_arena& arena, detail::FramebufferStorage& fb) {
-  const uint32_t samples = fb.desc.samples;
-  arena.execute([&] {
-    tbb::parallel_for(uint32_t{0}, fb.grid.tile_count(), [&](uint32_t tile) {
-      for (uint32_t block = 0; block < detail::kBlocksPerTile; ++block) {
-        float lo =
-            fb.depth[size_t{tile} * samples * binning::kTilePixels + block * detail::kBlockPixels];
-        float hi = lo;
-        for (uint32_t s = 0; s < samples; ++s) {
-          const float* z = fb.depth.data() + (size_t{tile} * samples + s) * binning::kTilePixels +
-                           block * detail::kBlockPixels;
-          for (uint32_t i = 0; i < detail::kBlockPixels; ++i) {
-            lo = std::min(lo, z[i]);
-            hi = std::max(hi, z[i]);
-          }
-        }
-        fb.hiz_min[size_t{tile} * detail::kBlocksPerTile + block] = lo;
-        fb.hiz_max[size_t{tile} * detail::kBlocksPerTile + block] = hi;
-      }
-    });
-  });
+// Marks every block's Hi-Z bounds out of date (the kernels recompute a block's when they need
+// it): for depth written by someone that does not maintain them.
+void invalidate_hiz(detail::FramebufferStorage& fb) {
+  std::fill(fb.hiz_min.begin(), fb.hiz_min.end(), std::numeric_limits<float>::infinity());
+  std::fill(fb.hiz_max.begin(), fb.hiz_max.end(), -std::numeric_limits<float>::infinity());
   fb.hiz_valid = true;
 }
 
@@ -98,7 +82,6 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   draw.samples = samples;
   draw.subpixel_bits = bits;
   draw.compare = pipeline.depth_compare;
-  draw.perspective = pipeline.interpolation == Interpolation::kPerspective;
   const auto pattern = sample_pattern(samples);
   for (uint32_t s = 0; s < samples; ++s) {
     draw.sample_x[s] = pattern[s].dx * (1 << (bits - 4));
@@ -116,7 +99,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   const CompareOp op = pipeline.depth_compare;
   draw.hiz = pipeline.depth_test && (op == CompareOp::kLess || op == CompareOp::kLessEqual ||
                                      op == CompareOp::kGreater || op == CompareOp::kGreaterEqual);
-  if (pipeline.depth_test && !fb.hiz_valid) rebuild_hiz(arena, fb);
+  if (pipeline.depth_test && !fb.hiz_valid) invalidate_hiz(fb);
 
   SetupContext ctx;
   ctx.width = fb.desc.width;
@@ -150,22 +133,17 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
         chunk.counters = {};
         chunk.stopped_at = chunk.end;
         for (size_t t = chunk.begin; t < chunk.end; ++t) {
-          std::array<ClipVertex, 3> tri;
+          std::array<const Float4*, 3> position;
+          std::array<const float*, 3> attribute{};
           for (int v = 0; v < 3; ++v) {
             const size_t vertex = indexed ? input.indices[t * 3 + v] : t * 3 + v;
-            const Float4& p = input.positions[vertex];
-            ClipVertex& cv = tri[v];
-            cv.x = p.x;
-            cv.y = p.y;
-            cv.w = p.w;
-            cv.z = pipeline.clip_depth == ClipDepth::kNegativeOneToOne ? 0.5 * (double{p.z} + p.w)
-                                                                       : p.z;
-            for (uint32_t a = 0; a < input.attribute_count; ++a) {
-              cv.attributes[a] = input.attributes[vertex * input.attribute_count + a];
+            position[v] = &input.positions[vertex];
+            if (input.attribute_count) {
+              attribute[v] = &input.attributes[vertex * input.attribute_count];
             }
           }
           const size_t first = chunk.setups.size();
-          setup_triangle(ctx, tri, chunk.setups, chunk.counters);
+          setup_triangle(ctx, position, attribute, chunk.setups, chunk.counters);
           for (size_t i = first; i < chunk.setups.size(); ++i) {
             const TriangleSetup& s = chunk.setups[i];
             const uint32_t tx0 = static_cast<uint32_t>(s.x0) >> binning::kTileSizeLog2;

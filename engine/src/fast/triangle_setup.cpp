@@ -1,5 +1,7 @@
 // Fixed-point triangle setup; the conventions (window mapping, snapping, fill rule, culling)
-// follow ARCHITECTURE.md section 2 to the bit, as the reference rasterizer does.
+// follow ARCHITECTURE.md section 2 to the bit, as the reference rasterizer does. Triangles
+// inside every clip plane (nearly all) go straight from the caller's floats to the setup; only
+// the others take the general clipper shared with the reference.
 #include "engine/src/fast/triangle_setup.hpp"
 
 #include <algorithm>
@@ -15,17 +17,30 @@ struct Snapped {
   int64_t x, y;  // fixed point, y down
   double z;      // z / w
   double inv_w;
-  const ClipVertex* clip;
+  std::array<double, 4> color;
 };
+
+// Round to nearest, ties to even, for |v| < 2^51: adding and subtracting 1.5 * 2^52 leaves
+// the integer part, rounded by the FPU's default mode. Same result as std::nearbyint, without
+// a library call.
+inline int64_t round_to_int(double v) {
+  constexpr double kMagic = 6755399441055744.0;
+  return static_cast<int64_t>((v + kMagic) - kMagic);
+}
 
 // window x = (x / w + 1) * width / 2, window y = (1 - y / w) * height / 2, in double, then
 // round to nearest (ties to even) at 2^subpixel_bits: the convention both rasterizers share.
-Snapped snap(const ClipVertex& v, const SetupContext& ctx) {
-  const double wx = (v.x / v.w + 1.0) * (0.5 * ctx.width);
-  const double wy = (1.0 - v.y / v.w) * (0.5 * ctx.height);
-  const int bits = static_cast<int>(ctx.subpixel_bits);
-  return {static_cast<int64_t>(std::nearbyint(std::ldexp(wx, bits))),
-          static_cast<int64_t>(std::nearbyint(std::ldexp(wy, bits))), v.z / v.w, 1.0 / v.w, &v};
+// Multiplying by 2^bits is exact, as ldexp is.
+Snapped snap(double x, double y, double z, double w, const SetupContext& ctx) {
+  const double scale = static_cast<double>(1u << ctx.subpixel_bits);
+  const double wx = (x / w + 1.0) * (0.5 * ctx.width);
+  const double wy = (1.0 - y / w) * (0.5 * ctx.height);
+  Snapped s;
+  s.x = round_to_int(wx * scale);
+  s.y = round_to_int(wy * scale);
+  s.z = z / w;
+  s.inv_w = 1.0 / w;
+  return s;
 }
 
 void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v,
@@ -62,7 +77,16 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v,
   ++counters.triangles_rasterized;
 
   // Edge k runs from vertex k+1 to vertex k+2: E(p) = (bx - ax)(py - ay) - (by - ay)(px - ax).
-  int64_t max_step = 0;
+  // Planes: a vertex value v_k spreads as E_k / area (the barycentric of vertex k), so the
+  // gradient per fixed-point unit is sum v_k * a_k / area. Values are taken at the centre of
+  // pixel (x0, y0) from the exact (unbiased) edge functions.
+  const int shift = bits - 4;
+  const int64_t cx = (int64_t{t.x0} * 16 + 8) << shift;
+  const int64_t cy = (int64_t{t.y0} * 16 + 8) << shift;
+  const double inv_area = 1.0 / static_cast<double>(area);
+  const double per_pixel = static_cast<double>(1u << bits) * inv_area;
+  double weight0[3], wdx[3], wdy[3];  // barycentrics at the origin and per pixel
+  int64_t max_step = 0, max_delta = 0;
   for (int k = 0; k < 3; ++k) {
     const Snapped& from = v[(k + 1) % 3];
     const Snapped& to = v[(k + 2) % 3];
@@ -74,75 +98,111 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v,
     t.b[k] = static_cast<int32_t>(dx);
     t.c[k] = dy * from.x - dx * from.y - (top_left ? 0 : 1);
     max_step = std::max(max_step, std::abs(dy) + std::abs(dx));
+    max_delta = std::max({max_delta, std::abs(dy), std::abs(dx)});
+    weight0[k] = static_cast<double>(dx * (cy - from.y) - dy * (cx - from.x)) * inv_area;
+    wdx[k] = static_cast<double>(-dy) * per_pixel;
+    wdy[k] = static_cast<double>(dx) * per_pixel;
   }
   t.narrow = max_step < narrow_edge_limit(ctx.subpixel_bits);
+  t.small = max_delta < (int64_t{16} << bits);
 
-  // Planes: a vertex value v_k spreads as E_k / area (the barycentric of vertex k), so the
-  // gradient per fixed-point unit is sum v_k * a_k / area. Values are taken at the centre of
-  // pixel (x0, y0) from the exact (unbiased) edge functions.
-  const int shift = bits - 4;
-  const int64_t cx = (int64_t{t.x0} * 16 + 8) << shift;
-  const int64_t cy = (int64_t{t.y0} * 16 + 8) << shift;
-  const double inv_area = 1.0 / static_cast<double>(area);
-  const double pixel = std::ldexp(1.0, bits);
-  std::array<double, 3> weight0;   // barycentrics at the origin pixel centre
-  std::array<double, 3> wdx, wdy;  // their gradients per pixel
-  for (int k = 0; k < 3; ++k) {
-    const Snapped& from = v[(k + 1) % 3];
-    const Snapped& to = v[(k + 2) % 3];
-    const int64_t e = (to.x - from.x) * (cy - from.y) - (to.y - from.y) * (cx - from.x);
-    weight0[k] = static_cast<double>(e) * inv_area;
-    wdx[k] = t.a[k] * inv_area * pixel;
-    wdy[k] = t.b[k] * inv_area * pixel;
-  }
-  auto plane = [&](const std::array<double, 3>& value, double& at0, float& gx, float& gy) {
-    at0 = weight0[0] * value[0] + weight0[1] * value[1] + weight0[2] * value[2];
-    gx = static_cast<float>(wdx[0] * value[0] + wdx[1] * value[1] + wdx[2] * value[2]);
-    gy = static_cast<float>(wdy[0] * value[0] + wdy[1] * value[1] + wdy[2] * value[2]);
+  auto plane = [&](double v0, double v1, double v2, double& at0, float& gx, float& gy) {
+    at0 = weight0[0] * v0 + weight0[1] * v1 + weight0[2] * v2;
+    gx = static_cast<float>(wdx[0] * v0 + wdx[1] * v1 + wdx[2] * v2);
+    gy = static_cast<float>(wdy[0] * v0 + wdy[1] * v1 + wdy[2] * v2);
   };
-  plane({v[0].z, v[1].z, v[2].z}, t.z0, t.z_dx, t.z_dy);
+  plane(v[0].z, v[1].z, v[2].z, t.z0, t.z_dx, t.z_dy);
   t.z_min = static_cast<float>(std::clamp(std::min({v[0].z, v[1].z, v[2].z}), 0.0, 1.0));
   t.z_max = static_cast<float>(std::clamp(std::max({v[0].z, v[1].z, v[2].z}), 0.0, 1.0));
 
-  std::array<double, 3> q{1.0, 1.0, 1.0};
-  if (p.interpolation == Interpolation::kPerspective) {
+  double q[3] = {1.0, 1.0, 1.0};
+  t.flat_q = p.interpolation == Interpolation::kAffine ||
+             (v[0].inv_w == v[1].inv_w && v[1].inv_w == v[2].inv_w);
+  if (!t.flat_q) {
     const double q_max = std::max({v[0].inv_w, v[1].inv_w, v[2].inv_w});
     for (int k = 0; k < 3; ++k)
       q[k] = v[k].inv_w / q_max;
   }
-  plane(q, t.q0, t.q_dx, t.q_dy);
+  double at0;
+  plane(q[0], q[1], q[2], at0, t.q_dx, t.q_dy);
+  t.q0 = static_cast<float>(at0);
   for (int c = 0; c < 4; ++c) {
-    std::array<double, 3> qa;
-    for (int k = 0; k < 3; ++k) {
-      const double a = c < static_cast<int>(ctx.attribute_count) ? v[k].clip->attributes[c]
-                                                                 : (c == 3 ? 1.0 : 0.0);
-      qa[k] = q[k] * a;
-    }
-    plane(qa, t.qa0[c], t.qa_dx[c], t.qa_dy[c]);
+    plane(q[0] * v[0].color[c], q[1] * v[1].color[c], q[2] * v[2].color[c], at0, t.qa_dx[c],
+          t.qa_dy[c]);
+    t.qa0[c] = static_cast<float>(at0);
   }
   out.push_back(t);
 }
 
+// The colour attributes of a vertex: the first four, missing ones (0, 0, 0, 1).
+std::array<double, 4> color_of(const float* attributes, uint32_t count) {
+  std::array<double, 4> c{0.0, 0.0, 0.0, 1.0};
+  for (uint32_t i = 0; i < std::min(count, 4u); ++i)
+    c[i] = attributes[i];
+  return c;
+}
+
 }  // namespace
 
-void setup_triangle(const SetupContext& ctx, const std::array<ClipVertex, 3>& triangle,
-                    std::vector<TriangleSetup>& out, Counters& counters) {
+void setup_triangle(const SetupContext& ctx, const std::array<const Float4*, 3>& positions,
+                    const std::array<const float*, 3>& attributes, std::vector<TriangleSetup>& out,
+                    Counters& counters) {
   ++counters.triangles_submitted;
-  if (!needs_clipping(triangle, ctx.guard_band)) {
-    setup_snapped(ctx, {snap(triangle[0], ctx), snap(triangle[1], ctx), snap(triangle[2], ctx)},
-                  out, counters);
+  const bool gl_depth = ctx.pipeline->clip_depth == ClipDepth::kNegativeOneToOne;
+  double x[3], y[3], z[3], w[3];
+  bool inside = true;
+  for (int k = 0; k < 3; ++k) {
+    const Float4& p = *positions[k];
+    x[k] = p.x;
+    y[k] = p.y;
+    w[k] = p.w;
+    // OpenGL's -w <= z <= w becomes 0 <= z <= w: z' = (z + w) / 2, linear, so clipping and
+    // interpolation commute with it.
+    z[k] = gl_depth ? 0.5 * (double{p.z} + p.w) : p.z;
+    // The distances clip.cpp computes, term for term (its zero terms add nothing).
+    const double gx = ctx.guard_band.x * w[k], gy = ctx.guard_band.y * w[k];
+    inside = inside && z[k] >= 0.0 && -z[k] + w[k] >= 0.0 && w[k] + -kMinClipW >= 0.0 &&
+             x[k] + gx >= 0.0 && -x[k] + gx >= 0.0 && y[k] + gy >= 0.0 && -y[k] + gy >= 0.0;
+  }
+  const uint32_t count = ctx.attribute_count;
+  if (inside) {
+    std::array<Snapped, 3> s;
+    for (int k = 0; k < 3; ++k) {
+      s[k] = snap(x[k], y[k], z[k], w[k], ctx);
+      s[k].color = count ? color_of(attributes[k], count) : color_of(nullptr, 0);
+    }
+    setup_snapped(ctx, s, out, counters);
     return;
   }
+
+  // The general path: clip, then fan. Clipping interpolates attributes linearly in clip space,
+  // right for perspective-correct ones; affine ones are linear in screen space, so they are
+  // clipped as a * w and divided by the new w (as the reference does; OpenGL 4.6 section 13.7).
+  const bool affine = ctx.pipeline->interpolation == Interpolation::kAffine;
+  std::array<ClipVertex, 3> tri;
+  for (int k = 0; k < 3; ++k) {
+    tri[k].x = x[k];
+    tri[k].y = y[k];
+    tri[k].z = z[k];
+    tri[k].w = w[k];
+    const std::array<double, 4> c = count ? color_of(attributes[k], count) : color_of(nullptr, 0);
+    for (int i = 0; i < 4; ++i)
+      tri[k].attributes[i] = affine ? c[i] * tri[k].w : c[i];
+  }
   ClipPolygon polygon;
-  const ClipResult clip = clip_triangle(triangle, ctx.attribute_count, ctx.guard_band, polygon);
+  const ClipResult clip = clip_triangle(tri, 4, ctx.guard_band, polygon);
   if (clip.clipped) ++counters.triangles_clipped;
   if (!clip.visible) {
     ++counters.triangles_culled;
     return;
   }
   std::array<Snapped, kMaxClipVertices> s;
-  for (int i = 0; i < polygon.count; ++i)
-    s[i] = snap(polygon.vertices[i], ctx);
+  for (int i = 0; i < polygon.count; ++i) {
+    const ClipVertex& v = polygon.vertices[i];
+    s[i] = snap(v.x, v.y, v.z, v.w, ctx);
+    for (int c = 0; c < 4; ++c)
+      s[i].color[c] = affine ? v.attributes[c] / v.w : v.attributes[c];
+  }
   for (int i = 1; i + 1 < polygon.count; ++i)
     setup_snapped(ctx, {s[0], s[i], s[i + 1]}, out, counters);
 }

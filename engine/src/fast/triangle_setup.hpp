@@ -28,6 +28,8 @@ struct TriangleSetup {
   std::array<int64_t, 3> c;
   int32_t x0, y0, x1, y1;  // pixels whose samples may be inside (inclusive), on screen
   bool narrow;
+  bool small;   // every edge spans under 16 px in x and in y (see block_kernel.cpp)
+  bool flat_q;  // q is 1 everywhere (affine, or every vertex has the same w): no division
 
   // Planes over pixel coordinates, as value at the centre of pixel (x0, y0) plus gradients per
   // pixel. z is z/w in [0, 1]. q is 1/w scaled so its largest vertex value is 1 (1 everywhere
@@ -35,9 +37,9 @@ struct TriangleSetup {
   double z0;
   float z_dx, z_dy;
   float z_min, z_max;  // over the vertices
-  double q0;
+  float q0;
   float q_dx, q_dy;
-  std::array<double, 4> qa0;
+  std::array<float, 4> qa0;
   std::array<float, 4> qa_dx, qa_dy;
 };
 
@@ -50,9 +52,11 @@ struct SetupContext {
   GuardBand guard_band;
 };
 
-// Sets up one input triangle (clip-space vertices in the 0..w depth convention), appending one
-// setup per piece that survives clipping and culling.
-void setup_triangle(const SetupContext& context, const std::array<ClipVertex, 3>& triangle,
-                    std::vector<TriangleSetup>& out, Counters& counters);
+// Sets up one input triangle: clip-space positions as given to the draw (the pipeline's depth
+// convention) and each vertex's attributes (attribute_count floats; null when there are none).
+// Appends one setup per piece that survives clipping and culling.
+void setup_triangle(const SetupContext& context, const std::array<const Float4*, 3>& positions,
+                    const std::array<const float*, 3>& attributes, std::vector<TriangleSetup>& out,
+                    Counters& counters);
 
 }  // namespace tessera::fast

@@ -228,12 +228,40 @@ void draw(detail::FramebufferStorage& fb, const PipelineState& pipeline, const D
       }
     }
 
+    // The clipper interpolates attributes linearly in clip space, which is right for
+    // perspective-correct ones. Affine attributes are linear in screen space instead: along an
+    // edge cut at clip-space parameter t they take lerp(a w, t) / lerp(w, t). So clip a * w and
+    // divide by the new w (OpenGL 4.6 section 13.7, noperspective outputs); otherwise a cut,
+    // e.g. at the guard band, would change the colours inside the viewport.
+    const bool affine = pipeline.interpolation == Interpolation::kAffine;
+    std::array<ClipVertex, 3> to_clip = tri;
+    if (affine) {
+      for (ClipVertex& c : to_clip) {
+        for (uint32_t a = 0; a < attribute_count; ++a) {
+          c.attributes[a] *= c.w;
+        }
+      }
+    }
     ClipPolygon polygon;
-    const ClipResult clip = clip_triangle(tri, attribute_count, guard_band, polygon);
+    const ClipResult clip = clip_triangle(to_clip, attribute_count, guard_band, polygon);
     if (clip.clipped) ++counters.triangles_clipped;
     if (!clip.visible) {
       ++counters.triangles_culled;
       continue;
+    }
+    if (affine && !clip.clipped) {
+      // Uncut: the attributes exactly as given.
+      for (int i = 0; i < 3; ++i) {
+        polygon.vertices[i] = tri[i];
+      }
+    } else if (affine) {
+      // Every vertex left after clipping has w >= kMinClipW > 0.
+      for (int i = 0; i < polygon.count; ++i) {
+        ClipVertex& c = polygon.vertices[i];
+        for (uint32_t a = 0; a < attribute_count; ++a) {
+          c.attributes[a] /= c.w;
+        }
+      }
     }
     std::array<WindowVertex, kMaxClipVertices> window;
     for (int i = 0; i < polygon.count; ++i) {
