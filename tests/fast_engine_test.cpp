@@ -31,10 +31,10 @@ struct Config {
   uint32_t threads;
 };
 
-std::string config_name(const testing::TestParamInfo<Config>& info) {
+std::string config_name(const Config& config) {
   const char* names[] = {"auto", "scalar", "sse4", "avx2", "avx512", "neon", "sve"};
-  return std::string(names[static_cast<int>(info.param.target)]) + "_threads" +
-         std::to_string(info.param.threads);
+  return std::string(names[static_cast<int>(config.target)]) + ", " +
+         std::to_string(config.threads) + " threads";
 }
 
 std::vector<Config> all_configs() {
@@ -149,38 +149,55 @@ double depth_error(float a, float b) {
   return std::ldexp(std::abs(double{a} - double{b}), 24);
 }
 
-class FastEngine : public testing::TestWithParam<Config> {};
+// Every test renders the reference once and compares it with the fast engine under every
+// configuration (the reference is the slow part; ctest runs each test in its own process).
+template <typename Fn>
+void for_each_config(Fn&& fn) {
+  for (const Config& config : all_configs()) {
+    SCOPED_TRACE(config_name(config));
+    fn(config);
+  }
+}
 
-TEST_P(FastEngine, CoverageMatchesReferenceInEverySizeClass) {
+TEST(FastEngine, CoverageMatchesReferenceInEverySizeClass) {
   // Sub-pixel to larger than the 136x72 screen.
   const float areas[] = {0.2f, 2.0f, 16.0f, 128.0f, 2048.0f, 20000.0f};
   for (size_t c = 0; c < std::size(areas); ++c) {
     const Scene s = soup(100 + static_cast<uint32_t>(c), 10000, areas[c], true);
-    expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
-                         "area " + std::to_string(areas[c]));
+    const Result ref = render(s, Backend::kReference);
+    for_each_config([&](const Config& config) {
+      expect_same_coverage(render(s, Backend::kFast, config), ref,
+                           "area " + std::to_string(areas[c]));
+    });
   }
 }
 
-TEST_P(FastEngine, CoverageMatchesReferenceForEveryMsaaCount) {
+TEST(FastEngine, CoverageMatchesReferenceForEveryMsaaCount) {
   for (uint32_t samples : {2u, 4u, 8u, 16u}) {
     Scene s = soup(200 + samples, 2000, 24.0f, true);
     s.samples = samples;
-    expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
-                         std::to_string(samples) + " samples");
+    const Result ref = render(s, Backend::kReference);
+    for_each_config([&](const Config& config) {
+      expect_same_coverage(render(s, Backend::kFast, config), ref,
+                           std::to_string(samples) + " samples");
+    });
   }
 }
 
-TEST_P(FastEngine, CoverageMatchesReferenceForEverySubpixelPrecision) {
+TEST(FastEngine, CoverageMatchesReferenceForEverySubpixelPrecision) {
   for (uint32_t bits = kMinSubpixelBits; bits <= kMaxSubpixelBits; ++bits) {
     Scene s = soup(300 + bits, 3000, 10.0f, true);
     s.pipeline.subpixel_bits = bits;
     s.samples = bits % 2 ? 4 : 1;
-    expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
-                         std::to_string(bits) + " subpixel bits");
+    const Result ref = render(s, Backend::kReference);
+    for_each_config([&](const Config& config) {
+      expect_same_coverage(render(s, Backend::kFast, config), ref,
+                           std::to_string(bits) + " subpixel bits");
+    });
   }
 }
 
-TEST_P(FastEngine, CoverageMatchesReferenceOnPixelCentresAndTileAndBlockBoundaries) {
+TEST(FastEngine, CoverageMatchesReferenceOnPixelCentresAndTileAndBlockBoundaries) {
   Scene s;
   std::mt19937 rng(7);
   // Vertices on pixel centres, pixel corners, block (8 px) and tile (64 px) lines.
@@ -199,12 +216,15 @@ TEST_P(FastEngine, CoverageMatchesReferenceOnPixelCentresAndTileAndBlockBoundari
   s.pipeline.depth_compare = CompareOp::kAlways;
   for (uint32_t samples : {1u, 4u}) {
     s.samples = samples;
-    expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
-                         std::to_string(samples) + " samples");
+    const Result ref = render(s, Backend::kReference);
+    for_each_config([&](const Config& config) {
+      expect_same_coverage(render(s, Backend::kFast, config), ref,
+                           std::to_string(samples) + " samples");
+    });
   }
 }
 
-TEST_P(FastEngine, CoverageMatchesReferenceOnLongSlivers) {
+TEST(FastEngine, CoverageMatchesReferenceOnLongSlivers) {
   Scene s;
   std::mt19937 rng(8);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -216,17 +236,19 @@ TEST_P(FastEngine, CoverageMatchesReferenceOnLongSlivers) {
     const float len = std::hypot(x1 - x0, y1 - y0) + 1e-3f;
     const float x[3] = {x0, x1, x0 + t * (x1 - x0) - off * (y1 - y0) / len};
     const float y[3] = {y0, y1, y0 + t * (y1 - y0) + off * (x1 - x0) / len};
-    const float z[3] = {static_cast<float>(i + 1) / 32768.0f, static_cast<float>(i + 1) / 32768.0f,
-                        static_cast<float>(i + 1) / 32768.0f};
+    const float zi = static_cast<float>(i + 1) / 32768.0f;
+    const float z[3] = {zi, zi, zi};
     const float w[3] = {1, 1, 1}, c[3][4] = {};
     s.add(x, y, z, w, c);
   }
   s.pipeline.depth_compare = CompareOp::kAlways;
-  expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
-                       "slivers");
+  const Result ref = render(s, Backend::kReference);
+  for_each_config([&](const Config& config) {
+    expect_same_coverage(render(s, Backend::kFast, config), ref, "slivers");
+  });
 }
 
-TEST_P(FastEngine, CoverageMatchesReferenceAtAndPastTheThirtyTwoBitStepLimit) {
+TEST(FastEngine, CoverageMatchesReferenceAtAndPastTheThirtyTwoBitStepLimit) {
   // Edge steps |a| + |b| just below, at and above narrow_edge_limit (4096 px at 8 bits): the
   // triangles reach far into the guard band while crossing the small screen.
   Scene s;
@@ -245,86 +267,92 @@ TEST_P(FastEngine, CoverageMatchesReferenceAtAndPastTheThirtyTwoBitStepLimit) {
   s.pipeline.depth_compare = CompareOp::kAlways;
   for (uint32_t samples : {1u, 8u}) {
     s.samples = samples;
-    expect_same_coverage(render(s, Backend::kFast, GetParam()), render(s, Backend::kReference),
-                         std::to_string(samples) + " samples");
+    const Result ref = render(s, Backend::kReference);
+    for_each_config([&](const Config& config) {
+      expect_same_coverage(render(s, Backend::kFast, config), ref,
+                           std::to_string(samples) + " samples");
+    });
   }
 }
 
-TEST_P(FastEngine, NearPlaneCrossingsMatchReference) {
-  Scene s;
-  std::mt19937 rng(9);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  for (int i = 0; i < 3000; ++i) {
-    const float z = static_cast<float>(i + 1) / 32768.0f;
-    for (int k = 0; k < 3; ++k) {
-      // w and z (0..w convention) chosen so that some vertices lie behind the eye or in front of
-      // the near plane; the visible depth is flattened by giving every vertex the same z/w.
-      const float w = u(rng) * 3.0f;
-      s.positions.push_back({u(rng) * 2.0f, u(rng) * 2.0f, w < 0 ? -0.5f : z * w, w});
-      for (int ch = 0; ch < 4; ++ch)
-        s.colors.push_back(0.5f + 0.5f * u(rng));
+TEST(FastEngine, NearPlaneCrossingsMatchReference) {
+  for (Interpolation interpolation : {Interpolation::kPerspective, Interpolation::kAffine}) {
+    Scene s;
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int i = 0; i < 3000; ++i) {
+      const float z = static_cast<float>(i + 1) / 32768.0f;
+      for (int k = 0; k < 3; ++k) {
+        // w and z (0..w convention) chosen so that some vertices lie behind the eye or in front
+        // of the near plane.
+        const float w = u(rng) * 3.0f;
+        s.positions.push_back({u(rng) * 2.0f, u(rng) * 2.0f, w < 0 ? -0.5f : z * w, w});
+        for (int ch = 0; ch < 4; ++ch)
+          s.colors.push_back(0.5f + 0.5f * u(rng));
+      }
     }
-  }
-  s.pipeline.depth_compare = CompareOp::kAlways;
-  s.pipeline.depth_write = true;
-  const Result fast = render(s, Backend::kFast, GetParam());
-  const Result ref = render(s, Backend::kReference);
-  EXPECT_GT(ref.counters.triangles_clipped, 100u);
-  EXPECT_EQ(fast.counters.triangles_clipped, ref.counters.triangles_clipped);
-  // Depth is not flat here (clipping moves vertices), so compare colour and depth by tolerance.
-  for (size_t i = 0; i < ref.rgba8.size(); ++i) {
-    ASSERT_LE(std::abs(int{fast.rgba8[i]} - int{ref.rgba8[i]}), 1) << "byte " << i;
-  }
-  for (size_t i = 0; i < ref.depth.size(); ++i) {
-    ASSERT_LE(depth_error(fast.depth[i], ref.depth[i]), kDepthTolerance) << "sample " << i;
+    s.pipeline.depth_compare = CompareOp::kAlways;
+    s.pipeline.interpolation = interpolation;
+    const Result ref = render(s, Backend::kReference);
+    EXPECT_GT(ref.counters.triangles_clipped, 100u);
+    for_each_config([&](const Config& config) {
+      const Result fast = render(s, Backend::kFast, config);
+      EXPECT_EQ(fast.counters.triangles_clipped, ref.counters.triangles_clipped);
+      // Depth is not flat here (clipping moves vertices): compare it by tolerance.
+      for (size_t i = 0; i < ref.rgba8.size(); ++i) {
+        ASSERT_LE(std::abs(int{fast.rgba8[i]} - int{ref.rgba8[i]}), 1) << "byte " << i;
+      }
+      for (size_t i = 0; i < ref.depth.size(); ++i) {
+        ASSERT_LE(depth_error(fast.depth[i], ref.depth[i]), kDepthTolerance) << "sample " << i;
+      }
+    });
   }
 }
 
-TEST_P(FastEngine, DepthWithinToleranceOfReference) {
+TEST(FastEngine, DepthWithinToleranceOfReference) {
   for (bool perspective : {false, true}) {
     for (uint32_t samples : {1u, 4u}) {
       Scene s = soup(400 + samples, 4000, 60.0f, false, perspective);
       s.samples = samples;
-      const Result fast = render(s, Backend::kFast, GetParam());
       const Result ref = render(s, Backend::kReference);
-      double worst = 0;
-      for (size_t i = 0; i < ref.depth.size(); ++i) {
-        worst = std::max(worst, depth_error(fast.depth[i], ref.depth[i]));
-      }
-      EXPECT_LE(worst, kDepthTolerance) << samples << " samples, perspective " << perspective;
-      std::printf("worst depth error %.2f x 2^-24 (%u samples, perspective %d)\n", worst, samples,
-                  perspective);
+      for_each_config([&](const Config& config) {
+        const Result fast = render(s, Backend::kFast, config);
+        double worst = 0;
+        for (size_t i = 0; i < ref.depth.size(); ++i) {
+          worst = std::max(worst, depth_error(fast.depth[i], ref.depth[i]));
+        }
+        EXPECT_LE(worst, kDepthTolerance) << samples << " samples, perspective " << perspective;
+      });
     }
   }
 }
 
-TEST_P(FastEngine, ColorWithinOneStepOfReference) {
+TEST(FastEngine, ColorWithinOneStepOfReference) {
   for (ColorFormat format : {ColorFormat::kRGBA8, ColorFormat::kRGBA32F}) {
     for (Interpolation interpolation : {Interpolation::kPerspective, Interpolation::kAffine}) {
       Scene s = soup(500, 3000, 80.0f, true, true);
       s.format = format;
       s.samples = format == ColorFormat::kRGBA8 ? 4 : 1;
       s.pipeline.interpolation = interpolation;
-      const Result fast = render(s, Backend::kFast, GetParam());
       const Result ref = render(s, Backend::kReference);
-      for (size_t i = 0; i < ref.rgba8.size(); ++i) {
-        ASSERT_LE(std::abs(int{fast.rgba8[i]} - int{ref.rgba8[i]}), 1) << "byte " << i;
-      }
-      for (size_t i = 0; i < ref.rgba32f.size(); ++i) {
-        ASSERT_NEAR(fast.rgba32f[i], ref.rgba32f[i], 1.0f / 255.0f) << "value " << i;
-      }
+      for_each_config([&](const Config& config) {
+        const Result fast = render(s, Backend::kFast, config);
+        for (size_t i = 0; i < ref.rgba8.size(); ++i) {
+          ASSERT_LE(std::abs(int{fast.rgba8[i]} - int{ref.rgba8[i]}), 1) << "byte " << i;
+        }
+        for (size_t i = 0; i < ref.rgba32f.size(); ++i) {
+          ASSERT_NEAR(fast.rgba32f[i], ref.rgba32f[i], 1.0f / 255.0f) << "value " << i;
+        }
+      });
     }
   }
 }
 
-TEST_P(FastEngine, WatertightGridCoversEverySampleExactlyOnce) {
-  // A jittered grid of 1,000,000 triangles (708 x 708 cells, two triangles each) over a 4-sample
-  // framebuffer: the samples covered add up to exactly the samples of the screen and none is left
-  // uncovered, so each is covered exactly once.
-  Scene s;
-  s.width = 320;
-  s.height = 200;
-  s.samples = 4;
+TEST(FastEngine, WatertightGridCoversEverySampleExactlyOnce) {
+  // A jittered grid of 1,002,528 triangles (708 x 708 cells, two triangles each) over a
+  // 4-sample framebuffer: the samples covered add up to exactly the samples of the screen and
+  // none is left uncovered, so each is covered exactly once.
+  const uint32_t width = 320, height = 200, samples = 4;
   const int n = 709;  // vertices per side
   std::mt19937 rng(10);
   // Each vertex moves at most 0.2 cells per axis: a triangle's vertex stays at least
@@ -349,45 +377,50 @@ TEST_P(FastEngine, WatertightGridCoversEverySampleExactlyOnce) {
     }
   }
   ASSERT_GE(indices.size() / 3, 1000000u);
-  RendererOptions options;
-  options.backend = Backend::kFast;
-  options.threads = GetParam().threads;
-  options.simd = GetParam().target;
-  Renderer renderer(options);
-  Framebuffer fb({s.width, s.height, s.samples, ColorFormat::kRGBA8});
-  fb.clear_depth(1.0f);
-  PipelineState p;
-  p.depth_compare = CompareOp::kAlways;
-  renderer.draw(fb, p, {v, {}, 0, indices});
-  EXPECT_EQ(renderer.counters().samples_covered, uint64_t{s.width} * s.height * s.samples);
-  const std::vector<float> depth = fb.read_sample_depth();
-  EXPECT_EQ(std::count(depth.begin(), depth.end(), 1.0f), 0);
+  for_each_config([&](const Config& config) {
+    RendererOptions options;
+    options.backend = Backend::kFast;
+    options.threads = config.threads;
+    options.simd = config.target;
+    Renderer renderer(options);
+    Framebuffer fb({width, height, samples, ColorFormat::kRGBA8});
+    PipelineState p;
+    p.depth_compare = CompareOp::kAlways;
+    renderer.draw(fb, p, {v, {}, 0, indices});
+    EXPECT_EQ(renderer.counters().samples_covered, uint64_t{width} * height * samples);
+    const std::vector<float> depth = fb.read_sample_depth();
+    EXPECT_EQ(std::count(depth.begin(), depth.end(), 1.0f), 0);
+  });
 }
 
-TEST_P(FastEngine, ImagesAreByteIdenticalAcrossThreadsRunsAndTargets) {
+TEST(FastEngine, ImagesAreByteIdenticalAcrossThreadsRunsAndTargets) {
   Scene s = soup(600, 20000, 40.0f, false, true);
   s.samples = 4;
   const Result baseline = render(s, Backend::kFast, {SimdTarget::kScalar, 1});
-  for (int run = 0; run < 2; ++run) {
-    const Result r = render(s, Backend::kFast, GetParam());
-    EXPECT_EQ(r.rgba8, baseline.rgba8) << "run " << run;
-    EXPECT_EQ(0, std::memcmp(r.depth.data(), baseline.depth.data(), r.depth.size() * 4))
-        << "run " << run;
-  }
+  for_each_config([&](const Config& config) {
+    for (int run = 0; run < 2; ++run) {
+      const Result r = render(s, Backend::kFast, config);
+      EXPECT_EQ(r.rgba8, baseline.rgba8) << "run " << run;
+      EXPECT_EQ(0, std::memcmp(r.depth.data(), baseline.depth.data(), r.depth.size() * 4))
+          << "run " << run;
+    }
+  });
 }
 
-TEST_P(FastEngine, SmallBinBudgetRendersInPassesWithTheSameImage) {
+TEST(FastEngine, SmallBinBudgetRendersInPassesWithTheSameImage) {
   Scene s = soup(700, 20000, 30.0f, false);
-  const Result whole = render(s, Backend::kFast, GetParam());
-  const Result passes = render(s, Backend::kFast, GetParam(), 64 << 10);
-  EXPECT_EQ(whole.counters.bin_passes, 1u);
-  EXPECT_GT(passes.counters.bin_passes, 4u);
-  EXPECT_EQ(passes.rgba8, whole.rgba8);
-  EXPECT_EQ(0, std::memcmp(passes.depth.data(), whole.depth.data(), whole.depth.size() * 4));
-  EXPECT_EQ(passes.counters.samples_passed, whole.counters.samples_passed);
+  for_each_config([&](const Config& config) {
+    const Result whole = render(s, Backend::kFast, config);
+    const Result passes = render(s, Backend::kFast, config, 64 << 10);
+    EXPECT_EQ(whole.counters.bin_passes, 1u);
+    EXPECT_GT(passes.counters.bin_passes, 4u);
+    EXPECT_EQ(passes.rgba8, whole.rgba8);
+    EXPECT_EQ(0, std::memcmp(passes.depth.data(), whole.depth.data(), whole.depth.size() * 4));
+    EXPECT_EQ(passes.counters.samples_passed, whole.counters.samples_passed);
+  });
 }
 
-TEST_P(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
+TEST(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
   Scene s;
   // A screen-filling pair of triangles in front, then many triangles behind it, large enough
   // (over 16 px across) to go through the Hi-Z test rather than the small-triangle path.
@@ -402,40 +435,44 @@ TEST_P(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
     s.positions.push_back(p);
   }
   s.colors.insert(s.colors.end(), behind.colors.begin(), behind.colors.end());
-  const Result fast = render(s, Backend::kFast, GetParam());
   const Result ref = render(s, Backend::kReference);
-  EXPECT_GT(fast.counters.hiz_rejected, 10000u);
-  EXPECT_EQ(fast.rgba8, ref.rgba8);
-  EXPECT_EQ(0, std::memcmp(fast.depth.data(), ref.depth.data(), ref.depth.size() * 4));
+  for_each_config([&](const Config& config) {
+    const Result fast = render(s, Backend::kFast, config);
+    EXPECT_GT(fast.counters.hiz_rejected, 10000u);
+    EXPECT_EQ(fast.rgba8, ref.rgba8);
+    EXPECT_EQ(0, std::memcmp(fast.depth.data(), ref.depth.data(), ref.depth.size() * 4));
+  });
 }
 
-TEST_P(FastEngine, DepthOnlyDrawWritesNoColourAndCulledTrianglesDrawNothing) {
+TEST(FastEngine, DepthOnlyDrawWritesNoColourAndCulledTrianglesDrawNothing) {
   Scene s = soup(900, 2000, 50.0f, false);
   s.pipeline.color_write = false;
-  const Result depth_only = render(s, Backend::kFast, GetParam());
   const Result ref = render(s, Backend::kReference);
-  EXPECT_EQ(depth_only.counters.pixels_shaded, 0u);
-  for (size_t i = 0; i < depth_only.rgba8.size(); i += 4) {
-    ASSERT_EQ(depth_only.rgba8[i], 26);  // the clear colour 0.1 * 255, rounded
-  }
-  for (size_t i = 0; i < ref.depth.size(); ++i) {
-    ASSERT_LE(depth_error(depth_only.depth[i], ref.depth[i]), kDepthTolerance);
-  }
+  std::vector<std::pair<Scene, Result>> culled;
   for (CullMode cull : {CullMode::kBack, CullMode::kFront}) {
     for (FrontFace front : {FrontFace::kCounterClockwise, FrontFace::kClockwise}) {
       Scene c = soup(901, 2000, 50.0f, true);
       c.pipeline.cull = cull;
       c.pipeline.front_face = front;
-      const Result f = render(c, Backend::kFast, GetParam());
-      const Result r = render(c, Backend::kReference);
-      expect_same_coverage(f, r, "culling");
-      EXPECT_GT(f.counters.triangles_culled, 900u);
+      culled.emplace_back(c, render(c, Backend::kReference));
     }
   }
+  for_each_config([&](const Config& config) {
+    const Result depth_only = render(s, Backend::kFast, config);
+    EXPECT_EQ(depth_only.counters.pixels_shaded, 0u);
+    for (size_t i = 0; i < depth_only.rgba8.size(); i += 4) {
+      ASSERT_EQ(depth_only.rgba8[i], 26);  // the clear colour 0.1 * 255, rounded
+    }
+    for (size_t i = 0; i < ref.depth.size(); ++i) {
+      ASSERT_LE(depth_error(depth_only.depth[i], ref.depth[i]), kDepthTolerance);
+    }
+    for (const auto& [scene, reference] : culled) {
+      const Result f = render(scene, Backend::kFast, config);
+      expect_same_coverage(f, reference, "culling");
+      EXPECT_GT(f.counters.triangles_culled, 900u);
+    }
+  });
 }
-
-INSTANTIATE_TEST_SUITE_P(AllTargetsAndThreadCounts, FastEngine, testing::ValuesIn(all_configs()),
-                         config_name);
 
 TEST(FastEngineOptions, ForcingAnUnsupportedOrUnknownTargetIsAnError) {
   for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,

@@ -59,7 +59,7 @@ struct Counters {
   uint64_t blocks_partial = 0;     // blocks that needed per-sample edge tests
   uint64_t hiz_rejected = 0;       // blocks skipped because the triangle is behind them
   uint64_t hiz_accepted = 0;       // fully covered blocks written without reading depth
-  uint64_t samples_covered = 0;
+  uint64_t samples_covered = 0;    // inside a triangle and tested (not in Hi-Z-rejected blocks)
   uint64_t samples_passed = 0;     // covered and passed the depth test
   uint64_t pixels_shaded = 0;      // pixels whose colour was computed (once per pixel)
 };
