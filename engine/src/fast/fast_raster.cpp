@@ -15,6 +15,7 @@
 
 #include "binning/bins.hpp"
 #include "engine/src/fast/block_kernel.hpp"
+#include "engine/src/fast/setup_kernel.hpp"
 #include "engine/src/fast/tile_raster.hpp"
 #include "engine/src/fast/triangle_setup.hpp"
 #include "engine/src/sample_positions.hpp"
@@ -48,6 +49,7 @@ struct FastRasterizer::State {
   int64_t target = 0;
   uint64_t budget = 0;
   const KernelTable* kernels = nullptr;
+  SetupRangeFn setup = nullptr;
   std::vector<Chunk> chunks;
   std::vector<Counters> tile_counters;
 };
@@ -57,6 +59,7 @@ FastRasterizer::FastRasterizer(int64_t simd_target, uint64_t bin_memory_budget)
   state_->target = simd_target;
   state_->budget = bin_memory_budget;
   state_->kernels = &kernel_table(simd_target);
+  state_->setup = setup_kernel(simd_target);
 }
 FastRasterizer::~FastRasterizer() = default;
 FastRasterizer::FastRasterizer(FastRasterizer&&) noexcept = default;
@@ -132,18 +135,12 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
         chunk.bins.reset(grid.tile_count());
         chunk.counters = {};
         chunk.stopped_at = chunk.end;
-        for (size_t t = chunk.begin; t < chunk.end; ++t) {
-          std::array<const Float4*, 3> position;
-          std::array<const float*, 3> attribute{};
-          for (int v = 0; v < 3; ++v) {
-            const size_t vertex = indexed ? input.indices[t * 3 + v] : t * 3 + v;
-            position[v] = &input.positions[vertex];
-            if (input.attribute_count) {
-              attribute[v] = &input.attributes[vertex * input.attribute_count];
-            }
-          }
+        // Setup in small batches, binning each batch and checking the budget after it.
+        constexpr size_t kBatch = 256;
+        for (size_t t = chunk.begin; t < chunk.end; t += kBatch) {
+          const size_t batch_end = std::min(chunk.end, t + kBatch);
           const size_t first = chunk.setups.size();
-          setup_triangle(ctx, position, attribute, chunk.setups, chunk.counters);
+          st.setup(ctx, input, t, batch_end, chunk.setups, chunk.counters);
           for (size_t i = first; i < chunk.setups.size(); ++i) {
             const TriangleSetup& s = chunk.setups[i];
             const uint32_t tx0 = static_cast<uint32_t>(s.x0) >> binning::kTileSizeLog2;
@@ -157,8 +154,8 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
             }
           }
           const uint64_t bytes = chunk.setups.size() * sizeof(TriangleSetup) + chunk.bins.bytes();
-          if (bytes >= chunk_budget && t + 1 < chunk.end) {
-            chunk.stopped_at = t + 1;
+          if (bytes >= chunk_budget && batch_end < chunk.end) {
+            chunk.stopped_at = batch_end;
             break;
           }
         }

@@ -1,0 +1,341 @@
+// Triangle setup vectorized across triangles (one triangle per double lane; the Masked
+// Occlusion Culling approach), written once against Highway and compiled for every target.
+// Every step is the scalar setup's (triangle_setup.cpp) in double precision and in the same
+// order of operations: window coordinates are integers below 2^25 and products of two of them
+// stay below 2^51, so snapping, areas and edge coefficients are exact in double lanes, and the
+// planes round exactly as the scalar code does. The setups are therefore the same bits on
+// every target. Triangles that a clip plane cuts leave the vector path for the scalar clipper.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "engine/src/fast/setup_kernel.hpp"
+
+// Arrays of vectors need sized vector types: targets with sizeless vectors are not compiled
+// here and use the portable (EMU128/scalar) instance instead.
+#ifndef HWY_DISABLED_TARGETS
+#define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
+#endif
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "engine/src/fast/setup_kernel.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "engine/src/fast/block_kernel.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace tessera::fast::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace {
+
+constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
+
+// Lane arrays for one batch: [vertex][lane] and [vertex][channel][lane].
+struct Batch {
+  alignas(64) double x[3][kMaxLanes], y[3][kMaxLanes], z[3][kMaxLanes], w[3][kMaxLanes];
+  alignas(64) double color[3][4][kMaxLanes];
+};
+
+// Results per lane, written by the vector code and packed into TriangleSetup by scalar code.
+struct Out {
+  alignas(64) double inside[kMaxLanes], keep[kMaxLanes];
+  alignas(64) double x0[kMaxLanes], y0[kMaxLanes], x1[kMaxLanes], y1[kMaxLanes];
+  alignas(64) double a[3][kMaxLanes], b[3][kMaxLanes], c[3][kMaxLanes];
+  alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes];
+  alignas(64) double z0[kMaxLanes], z_dx[kMaxLanes], z_dy[kMaxLanes], z_min[kMaxLanes],
+      z_max[kMaxLanes];
+  alignas(64) double q0[kMaxLanes], q_dx[kMaxLanes], q_dy[kMaxLanes];
+  alignas(64) double qa0[4][kMaxLanes], qa_dx[4][kMaxLanes], qa_dy[4][kMaxLanes];
+};
+
+template <class D, class V>
+HWY_INLINE V round_to_int(D d, V v) {
+  // Ties to even for |v| < 2^51, as triangle_setup.cpp's round_to_int.
+  const auto magic = hn::Set(d, 6755399441055744.0);
+  return hn::Sub(hn::Add(v, magic), magic);
+}
+
+// A mask as 1.0 / 0.0 per lane, to store.
+template <class D, class M>
+HWY_INLINE hn::Vec<D> as_double_mask(D d, M m) {
+  return hn::IfThenElseZero(m, hn::Set(d, 1.0));
+}
+
+void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  const size_t n = hn::Lanes(d);
+  const PipelineState& p = *ctx.pipeline;
+  const int bits = static_cast<int>(ctx.subpixel_bits);
+  const int shift = bits - 4;
+  const double scale = static_cast<double>(1u << bits);
+  const auto zero = hn::Zero(d);
+
+  for (size_t l0 = 0; l0 < lanes_used; l0 += n) {
+    V X[3], Y[3], Z[3], IW[3];
+    auto inside = hn::Eq(zero, zero);
+    for (int k = 0; k < 3; ++k) {
+      const V x = hn::Load(d, in.x[k] + l0), y = hn::Load(d, in.y[k] + l0);
+      const V z = hn::Load(d, in.z[k] + l0), w = hn::Load(d, in.w[k] + l0);
+      // The clip distances of clip.cpp, term for term.
+      const V gx = hn::Mul(hn::Set(d, ctx.guard_band.x), w);
+      const V gy = hn::Mul(hn::Set(d, ctx.guard_band.y), w);
+      inside = hn::And(inside, hn::Ge(z, zero));
+      inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(z), w), zero));
+      inside = hn::And(inside, hn::Ge(hn::Add(w, hn::Set(d, -kMinClipW)), zero));
+      inside = hn::And(inside, hn::Ge(hn::Add(x, gx), zero));
+      inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(x), gx), zero));
+      inside = hn::And(inside, hn::Ge(hn::Add(y, gy), zero));
+      inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(y), gy), zero));
+      // window x = (x / w + 1) * width / 2, window y = (1 - y / w) * height / 2, snapped.
+      const V wx = hn::Mul(hn::Add(hn::Div(x, w), hn::Set(d, 1.0)), hn::Set(d, 0.5 * ctx.width));
+      const V wy = hn::Mul(hn::Sub(hn::Set(d, 1.0), hn::Div(y, w)), hn::Set(d, 0.5 * ctx.height));
+      X[k] = round_to_int(d, hn::Mul(wx, hn::Set(d, scale)));
+      Y[k] = round_to_int(d, hn::Mul(wy, hn::Set(d, scale)));
+      Z[k] = hn::Div(z, w);
+      IW[k] = hn::Div(hn::Set(d, 1.0), w);
+    }
+    // Lanes outside a plane go to the scalar clipper; give them harmless values here.
+    V area = hn::Sub(hn::Mul(hn::Sub(X[1], X[0]), hn::Sub(Y[2], Y[0])),
+                     hn::Mul(hn::Sub(Y[1], Y[0]), hn::Sub(X[2], X[0])));
+    // y points down in window space: counter-clockwise in NDC means negative area here.
+    const auto ccw = hn::Lt(area, zero);
+    const bool ccw_front = p.front_face == FrontFace::kCounterClockwise;
+    auto keep = hn::And(inside, hn::Ne(area, zero));
+    if (p.cull == CullMode::kBack) keep = ccw_front ? hn::And(keep, ccw) : hn::AndNot(ccw, keep);
+    if (p.cull == CullMode::kFront) keep = ccw_front ? hn::AndNot(ccw, keep) : hn::And(keep, ccw);
+    // Orient clockwise on screen: swap vertices 1 and 2 where the area is negative.
+    V C[3][4];
+    for (int k = 0; k < 3; ++k) {
+      for (int c = 0; c < 4; ++c)
+        C[k][c] = hn::Load(d, in.color[k][c] + l0);
+    }
+    {
+      const V x1 = X[1], y1 = Y[1], z1 = Z[1], w1 = IW[1];
+      X[1] = hn::IfThenElse(ccw, X[2], X[1]);
+      X[2] = hn::IfThenElse(ccw, x1, X[2]);
+      Y[1] = hn::IfThenElse(ccw, Y[2], Y[1]);
+      Y[2] = hn::IfThenElse(ccw, y1, Y[2]);
+      Z[1] = hn::IfThenElse(ccw, Z[2], Z[1]);
+      Z[2] = hn::IfThenElse(ccw, z1, Z[2]);
+      IW[1] = hn::IfThenElse(ccw, IW[2], IW[1]);
+      IW[2] = hn::IfThenElse(ccw, w1, IW[2]);
+      for (int c = 0; c < 4; ++c) {
+        const V c1 = C[1][c];
+        C[1][c] = hn::IfThenElse(ccw, C[2][c], C[1][c]);
+        C[2][c] = hn::IfThenElse(ccw, c1, C[2][c]);
+      }
+      area = hn::Abs(area);
+    }
+    // Bounding box in pixels (floor division by 2^bits is exact), clamped to the screen.
+    const V inv_scale = hn::Set(d, 1.0 / scale);
+    const V bx0 = hn::Max(hn::Floor(hn::Mul(hn::Min(hn::Min(X[0], X[1]), X[2]), inv_scale)), zero);
+    const V by0 = hn::Max(hn::Floor(hn::Mul(hn::Min(hn::Min(Y[0], Y[1]), Y[2]), inv_scale)), zero);
+    const V bx1 = hn::Min(hn::Floor(hn::Mul(hn::Max(hn::Max(X[0], X[1]), X[2]), inv_scale)),
+                          hn::Set(d, ctx.width - 1.0));
+    const V by1 = hn::Min(hn::Floor(hn::Mul(hn::Max(hn::Max(Y[0], Y[1]), Y[2]), inv_scale)),
+                          hn::Set(d, ctx.height - 1.0));
+    keep = hn::And(keep, hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1)));
+    hn::Store(as_double_mask(d, inside), d, out.inside + l0);
+    hn::Store(as_double_mask(d, keep), d, out.keep + l0);
+    hn::Store(bx0, d, out.x0 + l0);
+    hn::Store(by0, d, out.y0 + l0);
+    hn::Store(bx1, d, out.x1 + l0);
+    hn::Store(by1, d, out.y1 + l0);
+
+    // Edges and barycentric planes (see triangle_setup.cpp).
+    const V cx = hn::Mul(hn::Add(hn::Mul(bx0, hn::Set(d, 16.0)), hn::Set(d, 8.0)),
+                         hn::Set(d, static_cast<double>(1u << shift)));
+    const V cy = hn::Mul(hn::Add(hn::Mul(by0, hn::Set(d, 16.0)), hn::Set(d, 8.0)),
+                         hn::Set(d, static_cast<double>(1u << shift)));
+    const V inv_area = hn::Div(hn::Set(d, 1.0), area);
+    const V per_pixel = hn::Mul(hn::Set(d, scale), inv_area);
+    V weight0[3], wdx[3], wdy[3];
+    V max_step = zero, max_delta = zero;
+    for (int k = 0; k < 3; ++k) {
+      const int from = (k + 1) % 3, to = (k + 2) % 3;
+      const V dx = hn::Sub(X[to], X[from]), dy = hn::Sub(Y[to], Y[from]);
+      const auto top_left = hn::Or(hn::Lt(dy, zero), hn::And(hn::Eq(dy, zero), hn::Gt(dx, zero)));
+      const V bias = hn::IfThenElseZero(hn::Not(top_left), hn::Set(d, 1.0));
+      hn::Store(hn::Neg(dy), d, out.a[k] + l0);
+      hn::Store(dx, d, out.b[k] + l0);
+      hn::Store(hn::Sub(hn::Sub(hn::Mul(dy, X[from]), hn::Mul(dx, Y[from])), bias), d,
+                out.c[k] + l0);
+      max_step = hn::Max(max_step, hn::Add(hn::Abs(dy), hn::Abs(dx)));
+      max_delta = hn::Max(max_delta, hn::Max(hn::Abs(dy), hn::Abs(dx)));
+      weight0[k] = hn::Mul(
+          hn::Sub(hn::Mul(dx, hn::Sub(cy, Y[from])), hn::Mul(dy, hn::Sub(cx, X[from]))), inv_area);
+      wdx[k] = hn::Mul(hn::Neg(dy), per_pixel);
+      wdy[k] = hn::Mul(dx, per_pixel);
+    }
+    hn::Store(as_double_mask(
+                  d, hn::Lt(max_step,
+                            hn::Set(d, static_cast<double>(narrow_edge_limit(ctx.subpixel_bits))))),
+              d, out.narrow + l0);
+    hn::Store(as_double_mask(d, hn::Lt(max_delta, hn::Set(d, 16.0 * scale))), d, out.small + l0);
+
+    auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {
+      hn::Store(hn::Add(hn::Add(hn::Mul(weight0[0], v0), hn::Mul(weight0[1], v1)),
+                        hn::Mul(weight0[2], v2)),
+                d, at0 + l0);
+      hn::Store(hn::Add(hn::Add(hn::Mul(wdx[0], v0), hn::Mul(wdx[1], v1)), hn::Mul(wdx[2], v2)), d,
+                gx + l0);
+      hn::Store(hn::Add(hn::Add(hn::Mul(wdy[0], v0), hn::Mul(wdy[1], v1)), hn::Mul(wdy[2], v2)), d,
+                gy + l0);
+    };
+    plane(Z[0], Z[1], Z[2], out.z0, out.z_dx, out.z_dy);
+    const V one = hn::Set(d, 1.0);
+    hn::Store(hn::Min(hn::Max(hn::Min(hn::Min(Z[0], Z[1]), Z[2]), zero), one), d, out.z_min + l0);
+    hn::Store(hn::Min(hn::Max(hn::Max(hn::Max(Z[0], Z[1]), Z[2]), zero), one), d, out.z_max + l0);
+
+    const bool affine = p.interpolation == Interpolation::kAffine;
+    const auto flat =
+        affine ? hn::Eq(zero, zero) : hn::And(hn::Eq(IW[0], IW[1]), hn::Eq(IW[1], IW[2]));
+    hn::Store(as_double_mask(d, flat), d, out.flat_q + l0);
+    const V q_max = hn::Max(hn::Max(IW[0], IW[1]), IW[2]);
+    V q[3];
+    for (int k = 0; k < 3; ++k)
+      q[k] = hn::IfThenElse(flat, one, hn::Div(IW[k], q_max));
+    plane(q[0], q[1], q[2], out.q0, out.q_dx, out.q_dy);
+    for (int c = 0; c < 4; ++c) {
+      plane(hn::Mul(q[0], C[0][c]), hn::Mul(q[1], C[1][c]), hn::Mul(q[2], C[2][c]), out.qa0[c],
+            out.qa_dx[c], out.qa_dy[c]);
+    }
+  }
+}
+
+}  // namespace
+
+void SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, size_t end,
+                std::vector<TriangleSetup>& setups, Counters& counters) {
+  const hn::ScalableTag<double> d;
+  const size_t lanes = std::min(hn::Lanes(d), kMaxLanes);
+  const bool indexed = !input.indices.empty();
+  const bool gl_depth = ctx.pipeline->clip_depth == ClipDepth::kNegativeOneToOne;
+  const uint32_t count = input.attribute_count;
+  Batch batch;
+  Out out;
+  for (size_t t = begin; t < end; t += lanes) {
+    const size_t used = std::min(lanes, end - t);
+    for (size_t l = 0; l < lanes; ++l) {
+      const size_t tri = t + std::min(l, used - 1);  // spare lanes repeat the last triangle
+      for (int k = 0; k < 3; ++k) {
+        const size_t vertex = indexed ? input.indices[tri * 3 + k] : tri * 3 + k;
+        const Float4& p = input.positions[vertex];
+        batch.x[k][l] = p.x;
+        batch.y[k][l] = p.y;
+        batch.w[k][l] = p.w;
+        batch.z[k][l] = gl_depth ? 0.5 * (double{p.z} + p.w) : p.z;
+        const float* a = count ? &input.attributes[vertex * count] : nullptr;
+        for (int c = 0; c < 4; ++c) {
+          batch.color[k][c][l] = c < static_cast<int>(count) ? a[c] : (c == 3 ? 1.0 : 0.0);
+        }
+      }
+    }
+    SetupBatchLanes(ctx, batch, lanes, out);
+    for (size_t l = 0; l < used; ++l) {
+      if (out.inside[l] == 0.0) {
+        // A clip plane cuts this triangle: the scalar path clips it (and counts it).
+        std::array<const Float4*, 3> position;
+        std::array<const float*, 3> attribute{};
+        for (int k = 0; k < 3; ++k) {
+          const size_t vertex = indexed ? input.indices[(t + l) * 3 + k] : (t + l) * 3 + k;
+          position[k] = &input.positions[vertex];
+          if (count) attribute[k] = &input.attributes[vertex * count];
+        }
+        setup_triangle(ctx, position, attribute, setups, counters);
+        continue;
+      }
+      ++counters.triangles_submitted;
+      if (out.keep[l] == 0.0) {
+        ++counters.triangles_culled;
+        continue;
+      }
+      ++counters.triangles_rasterized;
+      TriangleSetup& s = setups.emplace_back();
+      for (int k = 0; k < 3; ++k) {
+        s.a[k] = static_cast<int32_t>(out.a[k][l]);
+        s.b[k] = static_cast<int32_t>(out.b[k][l]);
+        s.c[k] = static_cast<int64_t>(out.c[k][l]);
+      }
+      s.x0 = static_cast<int32_t>(out.x0[l]);
+      s.y0 = static_cast<int32_t>(out.y0[l]);
+      s.x1 = static_cast<int32_t>(out.x1[l]);
+      s.y1 = static_cast<int32_t>(out.y1[l]);
+      s.narrow = out.narrow[l] != 0.0;
+      s.small = out.small[l] != 0.0;
+      s.flat_q = out.flat_q[l] != 0.0;
+      s.z0 = out.z0[l];
+      s.z_dx = static_cast<float>(out.z_dx[l]);
+      s.z_dy = static_cast<float>(out.z_dy[l]);
+      s.z_min = static_cast<float>(out.z_min[l]);
+      s.z_max = static_cast<float>(out.z_max[l]);
+      s.q0 = static_cast<float>(out.q0[l]);
+      s.q_dx = static_cast<float>(out.q_dx[l]);
+      s.q_dy = static_cast<float>(out.q_dy[l]);
+      for (int c = 0; c < 4; ++c) {
+        s.qa0[c] = static_cast<float>(out.qa0[c][l]);
+        s.qa_dx[c] = static_cast<float>(out.qa_dx[c][l]);
+        s.qa_dy[c] = static_cast<float>(out.qa_dy[c][l]);
+      }
+    }
+  }
+}
+
+}  // namespace tessera::fast::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+#include <iterator>
+
+namespace tessera::fast {
+
+namespace {
+struct TargetEntry {
+  int64_t bit;
+  SetupRangeFn fn;
+};
+constexpr TargetEntry kTargets[] = {
+#if HWY_TARGETS & HWY_AVX3_DL
+    {HWY_AVX3_DL, &N_AVX3_DL::SetupRange},
+#endif
+#if HWY_TARGETS & HWY_AVX3
+    {HWY_AVX3, &N_AVX3::SetupRange},
+#endif
+#if HWY_TARGETS & HWY_AVX2
+    {HWY_AVX2, &N_AVX2::SetupRange},
+#endif
+#if HWY_TARGETS & HWY_SSE4
+    {HWY_SSE4, &N_SSE4::SetupRange},
+#endif
+#if HWY_TARGETS & HWY_SSSE3
+    {HWY_SSSE3, &N_SSSE3::SetupRange},
+#endif
+#if HWY_TARGETS & HWY_SVE2
+    {HWY_SVE2, &N_SVE2::SetupRange},
+#endif
+#if HWY_TARGETS & HWY_SVE
+    {HWY_SVE, &N_SVE::SetupRange},
+#endif
+#if HWY_TARGETS & HWY_NEON
+    {HWY_NEON, &N_NEON::SetupRange},
+#endif
+#if HWY_TARGETS & HWY_EMU128
+    {HWY_EMU128, &N_EMU128::SetupRange},
+#endif
+#if HWY_TARGETS & HWY_SCALAR
+    {HWY_SCALAR, &N_SCALAR::SetupRange},
+#endif
+};
+}  // namespace
+
+SetupRangeFn setup_kernel(int64_t target) {
+  for (const TargetEntry& entry : kTargets) {
+    if (entry.bit == target) return entry.fn;
+  }
+  return kTargets[std::size(kTargets) - 1].fn;  // the portable instance, always compiled
+}
+
+}  // namespace tessera::fast
+#endif  // HWY_ONCE

@@ -1,0 +1,22 @@
+// Triangle setup vectorized across triangles (setup_kernel.cpp), dispatched per SIMD target.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/src/fast/triangle_setup.hpp"
+#include "tessera/renderer.hpp"
+
+namespace tessera::fast {
+
+// Sets up triangles [begin, end) of a validated draw, in order, appending their setups exactly
+// as setup_triangle would (same bits).
+using SetupRangeFn = void (*)(const SetupContext& context, const DrawInput& input, size_t begin,
+                              size_t end, std::vector<TriangleSetup>& out, Counters& counters);
+
+// The setup kernel compiled for a Highway target bit; targets without one (sizeless-vector
+// targets such as SVE) get the best portable one.
+SetupRangeFn setup_kernel(int64_t target);
+
+}  // namespace tessera::fast
