@@ -3,6 +3,7 @@
 // prints what it drew and how fast.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -28,6 +29,8 @@ struct Options {
   uint32_t threads = 1;
   uint32_t repeat = 0;
   uint32_t subpixel_bits = 8;
+  double bin_budget_mib = 0;
+  bool stats = false;
   std::vector<float> eye, target, up;
   float fov = 40.0f;
   bool ortho = false;
@@ -35,11 +38,46 @@ struct Options {
   bool affine = false;
   bool float_color = false;
   std::string cull = "none";
-  std::string backend = "reference";
+  std::string backend = "fast";
   std::vector<float> clear{0.08f, 0.09f, 0.11f, 1.0f};
 };
 
-glm::vec3 vec3_of(const std::vector<float>& v) { return {v[0], v[1], v[2]}; }
+glm::vec3 vec3_of(const std::vector<float>& v) {
+  return {v[0], v[1], v[2]};
+}
+
+[[noreturn]] void bad_argument(const std::string& message) {
+  throw tessera::Error(tessera::ErrorCode::kInvalidArgument, message);
+}
+
+// CLI11's range checks let NaN through (every comparison with NaN is false).
+void check_finite(const char* name, const std::vector<float>& values) {
+  for (float v : values) {
+    if (!std::isfinite(v)) {
+      bad_argument(std::string(name) + ": " + std::to_string(v) + " is not a finite number");
+    }
+  }
+}
+
+// An image path whose directory does not exist fails before anything is rendered, not after.
+void check_output_directory(const char* option, const std::string& path) {
+  if (path.empty()) return;
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!dir.empty() && !std::filesystem::is_directory(dir, ec)) {
+    bad_argument(std::string(option) + ": " + path + ": the directory " + dir.string() +
+                 " does not exist");
+  }
+}
+
+// A look-at camera needs a view direction and an up vector not parallel to it.
+void check_camera(const tessera::Camera& cam) {
+  const glm::vec3 dir = cam.target - cam.eye;
+  if (!(glm::length(dir) > 0.0f)) bad_argument("--eye/--target: the eye is at the target point");
+  if (!(glm::length(glm::cross(dir, cam.up)) > 0.0f)) {
+    bad_argument("--up: the up vector is zero or parallel to the view direction");
+  }
+}
 
 // What one frame draws, independent of where it came from.
 struct Job {
@@ -68,6 +106,13 @@ bool has_extension(const std::string& path, const char* ext) {
 }
 
 int run(const Options& o, const CLI::App& app) {
+  check_finite("--fov", {o.fov});
+  check_finite("--eye", o.eye);
+  check_finite("--target", o.target);
+  check_finite("--up", o.up);
+  check_finite("--clear", o.clear);
+  check_output_directory("--output", o.output);
+  check_output_directory("--depth", o.depth_output);
   Job job;
   uint32_t width = o.width, height = o.height;
   tessera::PipelineState pipeline;
@@ -97,6 +142,7 @@ int run(const Options& o, const CLI::App& app) {
     if (!o.up.empty()) cam.up = vec3_of(o.up);
     if (app.count("--fov")) cam.fov_y_degrees = o.fov;
     cam.orthographic = o.ortho;
+    check_camera(cam);
     if (!o.eye.empty() || !o.target.empty()) {
       // Keep the framed depth range around the new view distance.
       const tessera::Bounds b = job.scene->bounds();
@@ -116,10 +162,17 @@ int run(const Options& o, const CLI::App& app) {
                                       : tessera::CullMode::kNone;
 
   const bool float_color = o.float_color || has_extension(o.output, ".exr");
-  tessera::Framebuffer fb({width, height, o.samples,
-                           float_color ? tessera::ColorFormat::kRGBA32F
-                                       : tessera::ColorFormat::kRGBA8});
-  tessera::Renderer renderer({o.threads, tessera::Backend::kReference});
+  tessera::Framebuffer fb(
+      {width, height, o.samples,
+       float_color ? tessera::ColorFormat::kRGBA32F : tessera::ColorFormat::kRGBA8});
+  tessera::RendererOptions renderer_options;
+  renderer_options.threads = o.threads;
+  if (o.bin_budget_mib > 0) {
+    renderer_options.bin_memory_budget = static_cast<uint64_t>(o.bin_budget_mib * 1048576.0);
+  }
+  renderer_options.backend =
+      o.backend == "fast" ? tessera::Backend::kFast : tessera::Backend::kReference;
+  tessera::Renderer renderer(renderer_options);
   const std::array<float, 4> clear{o.clear[0], o.clear[1], o.clear[2], o.clear[3]};
 
   auto frame = [&] {
@@ -134,12 +187,13 @@ int run(const Options& o, const CLI::App& app) {
   if (o.repeat > 0) frame();  // warm-up
   renderer.reset_counters();
   const uint32_t frames = std::max<uint32_t>(o.repeat, 1);
-  for (uint32_t i = 0; i < frames; ++i) times.push_back(frame());
+  for (uint32_t i = 0; i < frames; ++i)
+    times.push_back(frame());
   std::vector<double> sorted = times;
   std::sort(sorted.begin(), sorted.end());
-  const double median = sorted.size() % 2 ? sorted[sorted.size() / 2]
-                                          : 0.5 * (sorted[sorted.size() / 2 - 1] +
-                                                   sorted[sorted.size() / 2]);
+  const double median = sorted.size() % 2
+                            ? sorted[sorted.size() / 2]
+                            : 0.5 * (sorted[sorted.size() / 2 - 1] + sorted[sorted.size() / 2]);
   const double mtri_s = double(job.triangles) / (median * 1e-3) / 1e6;
 
   if (float_color) {
@@ -165,6 +219,18 @@ int run(const Options& o, const CLI::App& app) {
               (unsigned long long)(c.triangles_clipped / frames),
               (unsigned long long)(c.samples_covered / frames),
               (unsigned long long)(c.samples_passed / frames));
+  if (o.stats) {
+    const auto per = [frames](uint64_t v) { return static_cast<unsigned long long>(v / frames); };
+    std::printf(
+        "per frame: submitted %llu, culled %llu, clipped %llu, rasterized %llu, bin references "
+        "%llu, bin passes %llu, blocks rejected %llu, accepted %llu, partial %llu, Hi-Z "
+        "rejected %llu, Hi-Z accepted %llu, samples covered %llu, passed %llu, pixels shaded "
+        "%llu\n",
+        per(c.triangles_submitted), per(c.triangles_culled), per(c.triangles_clipped),
+        per(c.triangles_rasterized), per(c.bin_references), per(c.bin_passes),
+        per(c.blocks_rejected), per(c.blocks_accepted), per(c.blocks_partial), per(c.hiz_rejected),
+        per(c.hiz_accepted), per(c.samples_covered), per(c.samples_passed), per(c.pixels_shaded));
+  }
   std::printf("time %.2f ms, %.3f Mtri/s\n", median, mtri_s);
   if (o.repeat > 0) {
     std::printf("frames=%u median_ms=%.3f min_ms=%.3f max_ms=%.3f mtri_s=%.3f\n", frames, median,
@@ -179,42 +245,63 @@ int run(const Options& o, const CLI::App& app) {
 
 int main(int argc, char** argv) {
   Options o;
-  CLI::App app{"tessera-render: render a mesh (OBJ, glTF 2.0, PLY, ...), a TRI1 capture (.tri), "
-               "or the built-in demo scene, with the Tessera software rasterizer"};
+  CLI::App app{
+      "tessera-render: render a mesh (OBJ, glTF 2.0, PLY, ...), a TRI1 capture (.tri), "
+      "or the built-in demo scene, with the Tessera software rasterizer"};
   app.add_option("input", o.input, "mesh or .tri capture; none renders the demo scene");
   app.add_option("-o,--output", o.output, "colour image (PNG, or EXR for float colour)")
       ->capture_default_str();
   app.add_option("--depth", o.depth_output, "write the depth buffer to this image (EXR)");
   app.add_option("--width", o.width, "image width in pixels")
-      ->check(CLI::Range(1u, tessera::kMaxFramebufferSize))->capture_default_str();
+      ->check(CLI::Range(1u, tessera::kMaxFramebufferSize))
+      ->capture_default_str();
   app.add_option("--height", o.height, "image height in pixels")
-      ->check(CLI::Range(1u, tessera::kMaxFramebufferSize))->capture_default_str();
+      ->check(CLI::Range(1u, tessera::kMaxFramebufferSize))
+      ->capture_default_str();
   app.add_option("-s,--samples", o.samples, "MSAA samples per pixel")
-      ->check(CLI::IsMember({1u, 2u, 4u, 8u, 16u}))->capture_default_str();
+      ->check(CLI::IsMember({1u, 2u, 4u, 8u, 16u}))
+      ->capture_default_str();
   app.add_option("--eye", o.eye, "camera position x,y,z")->delimiter(',')->expected(3);
-  app.add_option("--target", o.target, "point the camera looks at x,y,z")->delimiter(',')->expected(3);
+  app.add_option("--target", o.target, "point the camera looks at x,y,z")
+      ->delimiter(',')
+      ->expected(3);
   app.add_option("--up", o.up, "camera up vector x,y,z")->delimiter(',')->expected(3);
   app.add_option("--fov", o.fov, "vertical field of view in degrees")
-      ->check(CLI::Range(1.0f, 170.0f))->capture_default_str();
+      ->check(CLI::Range(1.0f, 170.0f))
+      ->capture_default_str();
   app.add_flag("--ortho", o.ortho, "orthographic projection");
   app.add_option("--backend", o.backend, "rasterizer")
-      ->check(CLI::IsMember({"reference"}))->capture_default_str();
+      ->check(CLI::IsMember({"fast", "reference"}))
+      ->capture_default_str();
   app.add_option("--threads", o.threads, "worker threads (0 = all cores)")
-      ->check(CLI::Range(0u, 1024u))->capture_default_str();
+      ->check(CLI::Range(0u, 1024u))
+      ->capture_default_str();
   app.add_option("--repeat", o.repeat,
                  "render K timed frames after one warm-up and print a summary line")
       ->check(CLI::Range(0u, 1000000u));
   app.add_option("--subpixel-bits", o.subpixel_bits, "fixed-point fraction bits (4..8)")
-      ->check(CLI::Range(4u, 8u))->capture_default_str();
+      ->check(CLI::Range(4u, 8u))
+      ->capture_default_str();
+  app.add_option("--bin-budget", o.bin_budget_mib,
+                 "fast engine: MiB of binned triangles per rasterization pass")
+      ->check(CLI::Range(0.0625, 65536.0));
+  app.add_flag("--stats", o.stats, "print every renderer counter, per frame");
   app.add_flag("--no-depth", o.no_depth, "no depth test: later triangles overwrite earlier ones");
   app.add_option("--cull", o.cull, "face culling")
-      ->check(CLI::IsMember({"back", "front", "none"}))->capture_default_str();
+      ->check(CLI::IsMember({"back", "front", "none"}))
+      ->capture_default_str();
   app.add_flag("--affine", o.affine, "affine (screen-linear) attribute interpolation");
   app.add_flag("--float", o.float_color, "float colour buffer (implied by an .exr output)");
   app.add_option("--clear", o.clear, "clear colour r,g,b,a")->delimiter(',')->expected(4);
   bool info = false;
   app.add_flag("--info", info, "print the SIMD targets this CPU supports and exit");
 
+  // A parse error is one line that names the argument; --help still prints the usage.
+  app.failure_message([](const CLI::App*, const CLI::Error& error) {
+    std::string message = error.what();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    return "tessera-render: " + message + " (see --help)\n";
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -222,14 +309,17 @@ int main(int argc, char** argv) {
   }
   if (info) {
     std::printf("simd targets:");
-    for (const std::string& t : tessera::simd::supported_targets()) std::printf(" %s", t.c_str());
+    for (const std::string& t : tessera::simd::supported_targets())
+      std::printf(" %s", t.c_str());
     std::printf("\n");
     return 0;
   }
   try {
     return run(o, app);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "tessera-render: %s\n", e.what());
+    std::string message = e.what();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    std::fprintf(stderr, "tessera-render: %s\n", message.c_str());
     return 1;
   }
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <new>
 #include <string>
 
 #include "tessera/error.hpp"
@@ -31,6 +32,28 @@ uint32_t read_u32(const unsigned char* p) {
   return v;
 }
 
+bool frame_size_ok(uint32_t width, uint32_t height) {
+  return width >= 1 && height >= 1 && width <= kMaxFramebufferSize && height <= kMaxFramebufferSize;
+}
+
+std::string frame_size_range(uint32_t width, uint32_t height) {
+  return "frame size " + std::to_string(width) + "x" + std::to_string(height) +
+         " is out of range (1.." + std::to_string(kMaxFramebufferSize) + ")";
+}
+
+// Which of a vertex's 8 floats (x, y, z, w, r, g, b, a) is not finite, or -1.
+int first_non_finite(const float* f) {
+  for (int k = 0; k < 8; ++k) {
+    if (!std::isfinite(f[k])) return k;
+  }
+  return -1;
+}
+
+std::string non_finite_message(size_t vertex, int component) {
+  return std::string(component < 4 ? "position" : "colour") + " of vertex " +
+         std::to_string(vertex) + " (triangle " + std::to_string(vertex / 3) + ") is not finite";
+}
+
 }  // namespace
 
 Capture load_capture(const std::filesystem::path& path) {
@@ -49,32 +72,32 @@ Capture load_capture(const std::filesystem::path& path) {
   c.width = read_u32(header + 4);
   c.height = read_u32(header + 8);
   const uint32_t count = read_u32(header + 12);
-  if (c.width == 0 || c.height == 0 || c.width > kMaxFramebufferSize ||
-      c.height > kMaxFramebufferSize) {
-    bad(path, "frame size " + std::to_string(c.width) + "x" + std::to_string(c.height) +
-                  " is out of range (1.." + std::to_string(kMaxFramebufferSize) + ")");
-  }
+  if (!frame_size_ok(c.width, c.height)) bad(path, frame_size_range(c.width, c.height));
   const uint64_t expected = kHeaderBytes + uint64_t{count} * kTriangleBytes;
   if (file_size != expected) {
     bad(path, "header says " + std::to_string(count) + " triangles (" + std::to_string(expected) +
                   " bytes) but the file has " + std::to_string(file_size) + " bytes");
   }
 
-  std::vector<float> raw(uint64_t{count} * 3 * 8);
-  if (!in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size() * 4))) {
-    bad(path, "read failed inside the triangle data");
-  }
+  // The size matches the header, so the allocation is what the file holds (at most 2^32
+  // triangles of 96 bytes); a file too large for memory is an Error, not std::bad_alloc.
   const size_t vertices = size_t{count} * 3;
-  c.positions.resize(vertices);
-  c.colors.resize(vertices * 4);
+  std::vector<float> raw;
+  try {
+    raw.resize(vertices * 8);
+    c.positions.resize(vertices);
+    c.colors.resize(vertices * 4);
+  } catch (const std::bad_alloc&) {
+    throw Error(ErrorCode::kOutOfMemory,
+                path.string() + ": not enough memory for " + std::to_string(count) + " triangles");
+  }
+  if (!in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size() * 4))) {
+    throw Error(ErrorCode::kIo, path.string() + ": read failed inside the triangle data");
+  }
   for (size_t v = 0; v < vertices; ++v) {
     const float* f = &raw[v * 8];
-    for (int k = 0; k < 8; ++k) {
-      if (!std::isfinite(f[k])) {
-        bad(path, std::string(k < 4 ? "position" : "colour") + " of vertex " + std::to_string(v) +
-                      " (triangle " + std::to_string(v / 3) + ") is not finite");
-      }
-    }
+    const int k = first_non_finite(f);
+    if (k >= 0) bad(path, non_finite_message(v, k));
     c.positions[v] = {f[0], f[1], f[2], f[3]};
     std::memcpy(&c.colors[v * 4], f + 4, 4 * sizeof(float));
   }
@@ -82,10 +105,30 @@ Capture load_capture(const std::filesystem::path& path) {
 }
 
 void save_capture(const std::filesystem::path& path, const Capture& c) {
+  // Everything is checked before the file is opened: a capture that load_capture would reject
+  // is not written, and a rejected save leaves an existing file as it was.
   if (c.positions.size() % 3 != 0 || c.colors.size() != c.positions.size() * 4) {
     throw Error(ErrorCode::kInvalidArgument,
                 "capture for " + path.string() +
                     " needs 3 positions per triangle and 4 colour floats per position");
+  }
+  if (!frame_size_ok(c.width, c.height)) {
+    throw Error(ErrorCode::kInvalidArgument,
+                "capture for " + path.string() + ": " + frame_size_range(c.width, c.height));
+  }
+  if (c.positions.size() / 3 > UINT32_MAX) {
+    throw Error(ErrorCode::kInvalidArgument,
+                "capture for " + path.string() + " has more than 2^32 - 1 triangles");
+  }
+  for (size_t v = 0; v < c.positions.size(); ++v) {
+    const Float4& p = c.positions[v];
+    const float* rgba = &c.colors[v * 4];
+    const float f[8] = {p.x, p.y, p.z, p.w, rgba[0], rgba[1], rgba[2], rgba[3]};
+    const int k = first_non_finite(f);
+    if (k >= 0) {
+      throw Error(ErrorCode::kInvalidInput,
+                  "capture for " + path.string() + ": " + non_finite_message(v, k));
+    }
   }
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) throw Error(ErrorCode::kIo, path.string() + ": cannot open for writing");
@@ -93,9 +136,9 @@ void save_capture(const std::filesystem::path& path, const Capture& c) {
   out.write(kMagic, 4);
   out.write(reinterpret_cast<const char*>(header), sizeof(header));
   for (size_t v = 0; v < c.positions.size(); ++v) {
-    const float f[8] = {c.positions[v].x, c.positions[v].y, c.positions[v].z, c.positions[v].w,
-                        c.colors[v * 4], c.colors[v * 4 + 1], c.colors[v * 4 + 2],
-                        c.colors[v * 4 + 3]};
+    const float f[8] = {c.positions[v].x,    c.positions[v].y,   c.positions[v].z,
+                        c.positions[v].w,    c.colors[v * 4],    c.colors[v * 4 + 1],
+                        c.colors[v * 4 + 2], c.colors[v * 4 + 3]};
     out.write(reinterpret_cast<const char*>(f), sizeof(f));
   }
   if (!out.flush()) throw Error(ErrorCode::kIo, path.string() + ": write failed");

@@ -5,14 +5,47 @@ namespace tessera {
 
 namespace {
 
+// Which coordinate a plane pins down, so that a vertex the plane creates lies on it exactly.
+enum class Pin { kZZero, kZToW, kWMin, kXMinus, kXPlus, kYMinus, kYPlus };
+
 // A plane as the signed distance d(v) = a*x + b*y + c*z + e*w + f; inside when d >= 0.
 struct Plane {
   double a, b, c, e, f;
+  Pin pin;
   double distance(const ClipVertex& v) const { return a * v.x + b * v.y + c * v.z + e * v.w + f; }
+  // Puts an interpolated vertex exactly on the plane. Interpolating across a huge range of w
+  // (say from 1e38 to 1e-30) cancels catastrophically; pinning keeps every clipped vertex
+  // inside the planes already applied, so w >= kMinClipW and |x|, |y| <= g * w hold, and
+  // window coordinates stay within the guard band.
+  void put_on(ClipVertex& v) const {
+    switch (pin) {
+      case Pin::kZZero:
+        v.z = 0.0;
+        break;
+      case Pin::kZToW:
+        v.z = v.w;
+        break;
+      case Pin::kWMin:
+        v.w = kMinClipW;
+        break;
+      case Pin::kXMinus:
+        v.x = -e * v.w;
+        break;
+      case Pin::kXPlus:
+        v.x = e * v.w;
+        break;
+      case Pin::kYMinus:
+        v.y = -e * v.w;
+        break;
+      case Pin::kYPlus:
+        v.y = e * v.w;
+        break;
+    }
+  }
 };
 
-ClipVertex intersect(const ClipVertex& inside, double d_in, const ClipVertex& outside,
-                     double d_out, uint32_t attribute_count) {
+ClipVertex intersect(const ClipVertex& inside, double d_in, const ClipVertex& outside, double d_out,
+                     uint32_t attribute_count) {
   const double t = d_in / (d_in - d_out);
   auto lerp = [t](double p, double q) { return p + t * (q - p); };
   ClipVertex r;
@@ -45,9 +78,11 @@ bool clip_against(ClipPolygon& poly, const Plane& plane, uint32_t attribute_coun
     const bool q_in = d[j] >= 0.0;
     if (p_in) result.vertices[result.count++] = p;
     if (p_in && !q_in) {
-      result.vertices[result.count++] = intersect(p, d[i], q, d[j], attribute_count);
+      result.vertices[result.count] = intersect(p, d[i], q, d[j], attribute_count);
+      plane.put_on(result.vertices[result.count++]);
     } else if (!p_in && q_in) {
-      result.vertices[result.count++] = intersect(q, d[j], p, d[i], attribute_count);
+      result.vertices[result.count] = intersect(q, d[j], p, d[i], attribute_count);
+      plane.put_on(result.vertices[result.count++]);
     }
   }
   poly = result;
@@ -60,13 +95,13 @@ PlaneSet clip_planes(GuardBand guard_band) {
   const double gx = guard_band.x;
   const double gy = guard_band.y;
   return {{
-      {0, 0, 1, 0, 0},            // near:   z >= 0
-      {0, 0, -1, 1, 0},           // far:    w - z >= 0
-      {0, 0, 0, 1, -kMinClipW},   // w >= kMinClipW
-      {1, 0, 0, gx, 0},           // left:   x + g w >= 0
-      {-1, 0, 0, gx, 0},          // right:  g w - x >= 0
-      {0, 1, 0, gy, 0},           // bottom: y + g w >= 0 (NDC y up)
-      {0, -1, 0, gy, 0},          // top:    g w - y >= 0
+      {0, 0, 1, 0, 0, Pin::kZZero},          // near:   z >= 0
+      {0, 0, -1, 1, 0, Pin::kZToW},          // far:    w - z >= 0
+      {0, 0, 0, 1, -kMinClipW, Pin::kWMin},  // w >= kMinClipW
+      {1, 0, 0, gx, 0, Pin::kXMinus},        // left:   x + g w >= 0
+      {-1, 0, 0, gx, 0, Pin::kXPlus},        // right:  g w - x >= 0
+      {0, 1, 0, gy, 0, Pin::kYMinus},        // bottom: y + g w >= 0 (NDC y up)
+      {0, -1, 0, gy, 0, Pin::kYPlus},        // top:    g w - y >= 0
   }};
 }
 
@@ -85,7 +120,8 @@ ClipResult clip_triangle(const std::array<ClipVertex, 3>& in, uint32_t attribute
                          GuardBand guard_band, ClipPolygon& out) {
   const PlaneSet planes = clip_planes(guard_band);
   out.count = 3;
-  for (int i = 0; i < 3; ++i) out.vertices[i] = in[i];
+  for (int i = 0; i < 3; ++i)
+    out.vertices[i] = in[i];
   ClipResult result;
   for (const Plane& plane : planes) {
     result.clipped |= clip_against(out, plane, attribute_count);

@@ -1,13 +1,37 @@
 // Mesh loading through Assimp (OBJ, glTF 2.0, PLY and the other formats it reads), flattened
 // into one triangle mesh, plus the small mesh utilities samples need.
+//
+// Assimp 5.2 is lenient in ways a renderer cannot be: its glTF 2 importer drops faces with
+// out-of-range indices and only logs a warning; its PLY importer turns faces that reference
+// missing vertices into faces without indices, on which its Triangulate step asserts (an abort
+// in Debian's build); its OBJ reader finds nothing in UTF-16 text. So the raw import is checked
+// here before any post-processing step runs, Assimp's warnings are listened to while a file is
+// imported, and text files with a byte-order mark are handed to Assimp as plain UTF-8.
+// What is rejected follows the glTF Validator's line: an error there (an index out of range) is
+// an error here; a warning there (a trailing incomplete triangle) is dropped, as OpenGL drops
+// incomplete primitives.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <mutex>
+#include <sstream>
 #include <string>
 #include <system_error>
+#include <tuple>
+#include <utility>
+#include <vector>
 
-#include <assimp/Importer.hpp>
+#include <assimp/DefaultIOSystem.h>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/DefaultLogger.hpp>
+#include <assimp/Importer.hpp>
+#include <assimp/LogStream.hpp>
 #include <glm/geometric.hpp>
 
 #include "tessera/error.hpp"
@@ -21,6 +45,398 @@ constexpr glm::vec4 kDefaultColor{0.72f, 0.74f, 0.78f, 1.0f};
 
 [[noreturn]] void bad(const std::filesystem::path& path, const std::string& what) {
   throw Error(ErrorCode::kInvalidInput, path.string() + ": " + what);
+}
+
+// Assimp's messages may end in a newline or span lines; ours are one line.
+std::string one_line(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  std::replace(s.begin(), s.end(), '\r', ' ');
+  while (!s.empty() && s.back() == ' ')
+    s.pop_back();
+  return s;
+}
+
+bool mentions_out_of_range(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s.find("out-of-range") != std::string::npos || s.find("out of range") != std::string::npos;
+}
+
+// Collects the warnings Assimp logs while one file is imported. Assimp's logger is one
+// process-wide object, so the guard holds a mutex for its whole life: imports through
+// load_mesh run one at a time. An application's own DefaultLogger is kept and only lent a
+// stream; otherwise a silent logger (no file, no console) exists for the import's duration.
+class AssimpWarnings {
+ public:
+  AssimpWarnings() : lock_(mutex()) {
+    created_ = Assimp::DefaultLogger::isNullLogger();
+    if (created_) Assimp::DefaultLogger::create("", Assimp::Logger::NORMAL, 0);
+    attached_ = Assimp::DefaultLogger::get()->attachStream(&stream_, Assimp::Logger::Warn);
+  }
+  ~AssimpWarnings() {
+    // Detached before the logger is killed: the logger deletes the streams it still holds.
+    if (attached_) Assimp::DefaultLogger::get()->detachStream(&stream_, Assimp::Logger::Warn);
+    if (created_) Assimp::DefaultLogger::kill();
+  }
+  AssimpWarnings(const AssimpWarnings&) = delete;
+  AssimpWarnings& operator=(const AssimpWarnings&) = delete;
+
+  // The first warning that says some of the file's data was out of range, or "".
+  std::string out_of_range() const {
+    for (const std::string& w : stream_.messages) {
+      if (mentions_out_of_range(w)) return w;
+    }
+    return {};
+  }
+
+ private:
+  struct Stream : Assimp::LogStream {
+    void write(const char* message) override {
+      // "Warn,  T0: text\n" -> "text"
+      std::string m = message;
+      const size_t colon = m.find(": ");
+      if (colon != std::string::npos) m.erase(0, colon + 2);
+      messages.push_back(one_line(m));
+    }
+    std::vector<std::string> messages;
+  };
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+
+  std::lock_guard<std::mutex> lock_;
+  Stream stream_;
+  bool created_ = false;
+  bool attached_ = false;
+};
+
+void append_utf8(std::string& out, uint32_t cp) {
+  if (cp < 0x80) {
+    out += static_cast<char>(cp);
+  } else if (cp < 0x800) {
+    out += static_cast<char>(0xC0 | (cp >> 6));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else if (cp < 0x10000) {
+    out += static_cast<char>(0xE0 | (cp >> 12));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else {
+    out += static_cast<char>(0xF0 | (cp >> 18));
+    out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  }
+}
+
+// UTF-16 (after its byte-order mark) to UTF-8; an unpaired surrogate becomes U+FFFD.
+std::string utf16_to_utf8(const std::filesystem::path& path, const std::string& bytes,
+                          bool big_endian) {
+  if (bytes.size() % 2 != 0) bad(path, "UTF-16 text with an odd number of bytes");
+  auto unit = [&](size_t i) {
+    const auto hi = static_cast<unsigned char>(bytes[big_endian ? i : i + 1]);
+    const auto lo = static_cast<unsigned char>(bytes[big_endian ? i + 1 : i]);
+    return static_cast<uint32_t>(hi << 8 | lo);
+  };
+  std::string out;
+  out.reserve(bytes.size() / 2);
+  for (size_t i = 2; i < bytes.size(); i += 2) {
+    uint32_t cp = unit(i);
+    if (cp >= 0xD800 && cp < 0xDC00 && i + 3 < bytes.size() && unit(i + 2) >= 0xDC00 &&
+        unit(i + 2) < 0xE000) {
+      cp = 0x10000 + ((cp - 0xD800) << 10) + (unit(i + 2) - 0xDC00);
+      i += 2;
+    } else if (cp >= 0xD800 && cp < 0xE000) {
+      cp = 0xFFFD;
+    }
+    append_utf8(out, cp);
+  }
+  return out;
+}
+
+// The file's text as plain UTF-8 when it starts with a byte-order mark, else "" (Assimp reads
+// the file itself). Only for the text formats of mesh.hpp: a binary file may begin with any
+// bytes.
+std::string without_byte_order_mark(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".obj" && ext != ".ply" && ext != ".gltf") return {};
+  std::ifstream in(path, std::ios::binary);
+  char head[3] = {};
+  in.read(head, 3);
+  const auto b = [&](int i) { return static_cast<unsigned char>(head[i]); };
+  const std::streamsize n = in.gcount();
+  const bool utf8 = n == 3 && b(0) == 0xEF && b(1) == 0xBB && b(2) == 0xBF;
+  const bool utf16be = n >= 2 && b(0) == 0xFE && b(1) == 0xFF;
+  const bool utf16le = n >= 2 && b(0) == 0xFF && b(1) == 0xFE;
+  if (!utf8 && !utf16be && !utf16le) return {};
+  std::error_code ec;
+  std::string bytes(std::filesystem::file_size(path, ec), '\0');
+  in.seekg(0);
+  if (ec || !in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
+    throw Error(ErrorCode::kIo, path.string() + ": read failed");
+  }
+  if (utf8) return bytes.substr(3);
+  return utf16_to_utf8(path, bytes, utf16be);
+}
+
+// Serves one file from memory (its UTF-8 text) and every other file (materials, buffers) from
+// disk as usual.
+class Utf8TextIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  Utf8TextIOSystem(std::string file, std::string text)
+      : file_(std::move(file)), text_(std::move(text)) {}
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (file_ == file && std::strchr(mode, 'w') == nullptr) {
+      return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(text_.data()),
+                                        text_.size(), /*own=*/false);
+    }
+    return Assimp::DefaultIOSystem::Open(file, mode);
+  }
+
+ private:
+  std::string file_;
+  std::string text_;
+};
+
+// --- PLY element counts ------------------------------------------------------------------
+// A PLY header declares how many of each element follow. Assimp's reader does not check that
+// the body holds them: a file cut short loads with its last face repeated or with vertices
+// read from past the end. So the body is walked here (numbers are not converted, only list
+// lengths read) and must hold exactly what the header declares; whitespace may follow in ASCII.
+// Anything this walk does not understand (a bad magic, an unknown type) is left to Assimp.
+
+struct PlyProperty {
+  int size = 0;  // bytes of a scalar, or of one list item
+  bool list = false;
+  int count_size = 0;  // bytes of a list's length
+  bool count_signed = false;
+};
+
+struct PlyElement {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+// Size and signedness of a PLY scalar type, or size 0 for an unknown one.
+std::pair<int, bool> ply_type(const std::string& t) {
+  if (t == "char" || t == "int8") return {1, true};
+  if (t == "uchar" || t == "uint8") return {1, false};
+  if (t == "short" || t == "int16") return {2, true};
+  if (t == "ushort" || t == "uint16") return {2, false};
+  if (t == "int" || t == "int32") return {4, true};
+  if (t == "uint" || t == "uint32") return {4, false};
+  if (t == "float" || t == "float32") return {4, true};
+  if (t == "double" || t == "float64") return {8, true};
+  return {0, false};
+}
+
+void check_ply_counts(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  auto next_line = [&] {
+    if (!std::getline(in, line)) return false;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  };
+  if (!next_line() || line != "ply") return;
+  enum class Format { kUnknown, kAscii, kLittle, kBig } format = Format::kUnknown;
+  std::vector<PlyElement> elements;
+  for (;;) {
+    if (!next_line()) bad(path, "PLY header without end_header");
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "end_header") break;
+    if (word == "format") {
+      words >> word;
+      format = word == "ascii"                  ? Format::kAscii
+               : word == "binary_little_endian" ? Format::kLittle
+               : word == "binary_big_endian"    ? Format::kBig
+                                                : Format::kUnknown;
+    } else if (word == "element") {
+      PlyElement e;
+      words >> e.name >> e.count;
+      if (!words) return;
+      elements.push_back(e);
+    } else if (word == "property") {
+      if (elements.empty()) return;
+      PlyProperty p;
+      words >> word;
+      if (word == "list") {
+        std::string count_type, item_type;
+        words >> count_type >> item_type;
+        std::tie(p.count_size, p.count_signed) = ply_type(count_type);
+        p.size = ply_type(item_type).first;
+        p.list = true;
+        if (p.count_size == 0 || p.count_size == 8) return;
+      } else {
+        p.size = ply_type(word).first;
+      }
+      if (p.size == 0) return;
+      elements.back().properties.push_back(p);
+    }
+  }
+  if (format == Format::kUnknown) return;
+
+  std::streambuf& body = *in.rdbuf();
+  const auto truncated = [&](const PlyElement& e, uint64_t complete) {
+    bad(path, "truncated PLY file: the header declares " + std::to_string(e.count) + " " + e.name +
+                  " elements, the data ends after " + std::to_string(complete));
+  };
+  if (format == Format::kAscii) {
+    // Skips whitespace, then reads one token (or returns false at the end of the file).
+    std::string token;
+    auto next_token = [&] {
+      token.clear();
+      int c = body.sgetc();
+      while (c != EOF && std::isspace(c))
+        c = body.snextc();
+      while (c != EOF && !std::isspace(c)) {
+        token += static_cast<char>(c);
+        c = body.snextc();
+      }
+      return !token.empty();
+    };
+    for (const PlyElement& e : elements) {
+      for (uint64_t i = 0; i < e.count; ++i) {
+        for (const PlyProperty& p : e.properties) {
+          if (!next_token()) truncated(e, i);
+          if (!p.list) continue;
+          char* end = nullptr;
+          const long long n = std::strtoll(token.c_str(), &end, 10);
+          if (*end != '\0' || n < 0) {
+            bad(path,
+                "PLY " + e.name + " " + std::to_string(i) + " has the list length '" + token + "'");
+          }
+          for (long long k = 0; k < n; ++k) {
+            if (!next_token()) truncated(e, i);
+          }
+        }
+      }
+    }
+    if (next_token()) {
+      bad(path, "PLY file holds more data than its header declares (from '" + token + "' on)");
+    }
+    return;
+  }
+
+  // Binary: the position is tracked against the file size, since seeking past the end is not
+  // an error for a stream.
+  std::error_code ec;
+  const uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec) return;
+  uint64_t pos = static_cast<uint64_t>(body.pubseekoff(0, std::ios::cur, std::ios::in));
+  for (const PlyElement& e : elements) {
+    bool fixed = true;
+    uint64_t bytes = 0;
+    for (const PlyProperty& p : e.properties) {
+      fixed = fixed && !p.list;
+      bytes += static_cast<uint64_t>(p.size);
+    }
+    if (fixed) {
+      // count * bytes <= size - pos after this check, so the product cannot overflow.
+      if (bytes > 0 && e.count > (size - pos) / bytes) truncated(e, (size - pos) / bytes);
+      pos += e.count * bytes;
+      continue;
+    }
+    body.pubseekpos(static_cast<std::streamoff>(pos), std::ios::in);
+    for (uint64_t i = 0; i < e.count; ++i) {
+      for (const PlyProperty& p : e.properties) {
+        if (!p.list) {
+          if (size - pos < static_cast<uint64_t>(p.size)) truncated(e, i);
+          pos += static_cast<uint64_t>(p.size);
+          body.pubseekoff(p.size, std::ios::cur, std::ios::in);
+          continue;
+        }
+        unsigned char b[4] = {};
+        if (size - pos < static_cast<uint64_t>(p.count_size) ||
+            body.sgetn(reinterpret_cast<char*>(b), p.count_size) != p.count_size) {
+          truncated(e, i);
+        }
+        pos += static_cast<uint64_t>(p.count_size);
+        uint64_t n = 0;
+        for (int k = 0; k < p.count_size; ++k) {
+          const int byte = format == Format::kLittle ? p.count_size - 1 - k : k;
+          n = n << 8 | b[byte];
+        }
+        const uint64_t sign_bit = uint64_t{1} << (8 * p.count_size - 1);
+        if (p.count_signed && (n & sign_bit) != 0) {
+          bad(path, "PLY " + e.name + " " + std::to_string(i) + " has a negative list length");
+        }
+        if (n > (size - pos) / static_cast<uint64_t>(p.size)) truncated(e, i);
+        pos += n * static_cast<uint64_t>(p.size);
+        body.pubseekoff(static_cast<std::streamoff>(n) * p.size, std::ios::cur, std::ios::in);
+      }
+    }
+  }
+  if (pos != size) {
+    bad(path,
+        "PLY file holds " + std::to_string(size - pos) + " bytes more than its header declares");
+  }
+}
+
+std::string describe(const aiVector3D& v) {
+  std::ostringstream s;
+  s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return s.str();
+}
+
+bool finite(const aiVector3D& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+std::string mesh_name(const aiMesh& mesh, unsigned index) {
+  std::string s = "mesh " + std::to_string(index);
+  if (mesh.mName.length > 0) s += " (\"" + one_line(mesh.mName.C_Str()) + "\")";
+  return s;
+}
+
+// Checks the importer's output before any post-processing step reads it: every array that a
+// count promises is there, every face has indices and each index names a vertex, every
+// position is finite, and at least one face is a triangle or polygon.
+void check_raw_scene(const std::filesystem::path& path, const aiScene& scene) {
+  if (scene.mNumMeshes > 0 && scene.mMeshes == nullptr)
+    bad(path, "the scene's mesh list is missing");
+  bool has_polygons = false;
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    if (scene.mMeshes[m] == nullptr) bad(path, "mesh " + std::to_string(m) + " is missing");
+    const aiMesh& mesh = *scene.mMeshes[m];
+    if (mesh.mNumVertices > 0 && mesh.mVertices == nullptr) {
+      bad(path, mesh_name(mesh, m) + " has no vertex positions");
+    }
+    if (mesh.mNumFaces > 0 && mesh.mFaces == nullptr)
+      bad(path, mesh_name(mesh, m) + " has no faces");
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices == 0 || face.mIndices == nullptr) {
+        bad(path, "face " + std::to_string(f) + " of " + mesh_name(mesh, m) +
+                      " has no vertex indices (the file's face is malformed or names vertices "
+                      "that do not exist)");
+      }
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        if (face.mIndices[k] >= mesh.mNumVertices) {
+          bad(path, "face " + std::to_string(f) + " of " + mesh_name(mesh, m) + " has index " +
+                        std::to_string(face.mIndices[k]) + ", out of range (" +
+                        std::to_string(mesh.mNumVertices) + " vertices)");
+        }
+      }
+      if (face.mNumIndices >= 3) has_polygons = true;
+    }
+  }
+  if (!has_polygons) {
+    bad(path, "no triangles to draw (the file holds only points, lines or nothing)");
+  }
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      if (!finite(mesh.mVertices[v])) {
+        bad(path, "vertex " + std::to_string(v) + " of " + mesh_name(mesh, m) +
+                      " has a position that is not finite: " + describe(mesh.mVertices[v]));
+      }
+    }
+  }
 }
 
 glm::vec4 material_color(const aiScene& scene, unsigned material_index) {
@@ -37,53 +453,83 @@ glm::vec4 material_color(const aiScene& scene, unsigned material_index) {
   return kDefaultColor;
 }
 
-bool finite(const aiVector3D& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 }  // namespace
 
 Mesh load_mesh(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status))
     throw Error(ErrorCode::kIo, path.string() + ": no such file");
+  if (!std::filesystem::is_regular_file(status)) {
+    throw Error(ErrorCode::kIo, path.string() + ": not a regular file");
   }
+  if (!std::ifstream(path, std::ios::binary)) {
+    throw Error(ErrorCode::kIo, path.string() + ": cannot open for reading");
+  }
+
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".ply") check_ply_counts(path);
+
+  AssimpWarnings warnings;
   Assimp::Importer importer;
-  // Triangles only (polygons are triangulated, points and lines sorted out), node transforms
-  // applied, shared vertices merged, and the result checked for out-of-range indices.
-  const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType |
-                         aiProcess_PreTransformVertices | aiProcess_JoinIdenticalVertices |
-                         aiProcess_ValidateDataStructure;
-  const aiScene* scene = importer.ReadFile(path.string(), flags);
-  if (scene == nullptr) {
-    std::string reason = importer.GetErrorString();
-    while (!reason.empty() && (reason.back() == '\n' || reason.back() == ' ')) reason.pop_back();
-    for (char& ch : reason) {
-      if (ch == '\n') ch = ' ';
-    }
-    bad(path, "cannot load mesh: " + (reason.empty() ? std::string("unknown error") : reason));
+  std::string text = without_byte_order_mark(path);
+  if (!text.empty()) {
+    // The importer takes ownership of its IO system.
+    importer.SetIOHandler(new Utf8TextIOSystem(path.string(), std::move(text)));
   }
-  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) bad(path, "incomplete scene");
+  // The import alone first, checked by check_raw_scene; only then the post-processing steps,
+  // which trust their input.
+  // Fails on an Assimp error or on a warning that some of the file's data was out of range
+  // (Assimp then dropped it and carried on).
+  auto check = [&](const aiScene* result) {
+    const std::string out_of_range = warnings.out_of_range();
+    const std::string reason = one_line(importer.GetErrorString());
+    if (!out_of_range.empty()) {
+      bad(path, "data out of range (Assimp: " + out_of_range +
+                    (result == nullptr && !reason.empty() ? "; " + reason : std::string()) + ")");
+    }
+    if (result == nullptr) {
+      bad(path, "cannot load mesh: " + (reason.empty() ? std::string("unknown error") : reason));
+    }
+    return result;
+  };
+  const aiScene* scene = check(importer.ReadFile(path.string(), 0));
+  check_raw_scene(path, *scene);
+
+  // Assimp's own structural validation, then: polygons triangulated, points and lines sorted
+  // out, node transforms applied, shared vertices merged.
+  check(importer.ApplyPostProcessing(aiProcess_ValidateDataStructure));
+  scene = check(importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType |
+                                             aiProcess_PreTransformVertices |
+                                             aiProcess_JoinIdenticalVertices));
+  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
+    bad(path, "incomplete scene (Assimp could not read all of it)");
+  }
 
   Mesh mesh;
   bool all_have_normals = true;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh& am = *scene->mMeshes[m];
     if ((am.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
-    const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
+    if (mesh.positions.size() + am.mNumVertices > UINT32_MAX) {
+      bad(path, "more than 2^32 vertices in all meshes together");
+    }
+    const auto base = static_cast<uint32_t>(mesh.positions.size());
     const glm::vec4 color = material_color(*scene, am.mMaterialIndex);
     for (unsigned v = 0; v < am.mNumVertices; ++v) {
       const aiVector3D& p = am.mVertices[v];
       if (!finite(p)) {
-        bad(path, "vertex " + std::to_string(v) + " of mesh " + std::to_string(m) +
-                      " has a position that is not finite");
+        bad(path, "vertex " + std::to_string(v) + " of " + mesh_name(am, m) +
+                      " is not finite after its node transforms: " + describe(p));
       }
       mesh.positions.emplace_back(p.x, p.y, p.z);
       if (am.HasVertexColors(0)) {
         const aiColor4D& c = am.mColors[0][v];
         const glm::vec4 vc{c.r, c.g, c.b, c.a};
-        const bool ok = std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b) &&
-                        std::isfinite(c.a);
+        const bool ok =
+            std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b) && std::isfinite(c.a);
         mesh.colors.push_back(ok ? glm::clamp(vc, 0.0f, 1.0f) : color);
       } else {
         mesh.colors.push_back(color);
@@ -98,17 +544,19 @@ Mesh load_mesh(const std::filesystem::path& path) {
     for (unsigned f = 0; f < am.mNumFaces; ++f) {
       const aiFace& face = am.mFaces[f];
       if (face.mNumIndices != 3) continue;
-      for (int k = 0; k < 3; ++k) {
+      for (unsigned k = 0; k < 3; ++k) {
         if (face.mIndices[k] >= am.mNumVertices) {
-          bad(path, "face " + std::to_string(f) + " of mesh " + std::to_string(m) +
-                        " has index " + std::to_string(face.mIndices[k]) + ", out of range (" +
+          bad(path, "face " + std::to_string(f) + " of " + mesh_name(am, m) + " has index " +
+                        std::to_string(face.mIndices[k]) + ", out of range (" +
                         std::to_string(am.mNumVertices) + " vertices)");
         }
         mesh.indices.push_back(base + face.mIndices[k]);
       }
     }
   }
-  if (mesh.indices.empty()) bad(path, "no triangles to draw (the file holds only points, lines or nothing)");
+  if (mesh.indices.empty()) {
+    bad(path, "no triangles to draw (the file holds only points, lines or nothing)");
+  }
   if (!all_have_normals) compute_normals(mesh);
   return mesh;
 }
@@ -118,8 +566,8 @@ void compute_normals(Mesh& mesh) {
   for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
     const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
     // The cross product's length is twice the triangle's area: an area-weighted sum.
-    const glm::vec3 n = glm::cross(mesh.positions[b] - mesh.positions[a],
-                                   mesh.positions[c] - mesh.positions[a]);
+    const glm::vec3 n =
+        glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
     mesh.normals[a] += n;
     mesh.normals[b] += n;
     mesh.normals[c] += n;
@@ -145,7 +593,8 @@ void append_mesh(Mesh& mesh, const Mesh& other) {
   mesh.positions.insert(mesh.positions.end(), other.positions.begin(), other.positions.end());
   mesh.normals.insert(mesh.normals.end(), other.normals.begin(), other.normals.end());
   mesh.colors.insert(mesh.colors.end(), other.colors.begin(), other.colors.end());
-  for (uint32_t i : other.indices) mesh.indices.push_back(base + i);
+  for (uint32_t i : other.indices)
+    mesh.indices.push_back(base + i);
 }
 
 }  // namespace tessera

@@ -22,8 +22,12 @@ struct Capture {
 
 // Throws Error(kIo) when the file cannot be read, Error(kInvalidInput) for a wrong magic, a
 // truncated file, a count that does not match the file size, a zero or oversized frame, or a
-// NaN/Inf position; the message names the file.
+// NaN/Inf position or colour, Error(kOutOfMemory) when the triangles do not fit in memory; the
+// message names the file.
 Capture load_capture(const std::filesystem::path& path);
+// Writes only what load_capture accepts: Error(kInvalidArgument) for sizes that do not match
+// or a frame size out of 1..kMaxFramebufferSize, Error(kInvalidInput) for a NaN/Inf value,
+// both before the file is touched; Error(kIo) when it cannot be written.
 void save_capture(const std::filesystem::path& path, const Capture& capture);
 
 // The state a capture is replayed with: OpenGL depth convention, depth test LESS, depth

@@ -27,9 +27,12 @@ struct Bounds {
 
 // Loads every triangle of every mesh in the file's scene, with node transforms applied, into
 // one mesh. Colours come from vertex colours, else the material's diffuse colour, else a
-// neutral grey. Missing normals are computed (smooth). Throws Error(kIo) for a missing or
-// unreadable file and Error(kInvalidInput) for a malformed one or one without triangles, with
-// the file name and the reason in the message.
+// neutral grey. Missing normals are computed (smooth). Text files (OBJ, PLY, glTF) may start
+// with a UTF-8 or UTF-16 byte-order mark. Throws Error(kIo) for a missing or unreadable file
+// and Error(kInvalidInput) for a malformed one (an index out of range, a NaN or infinite
+// position, anything Assimp cannot read) or one without triangles, with the file name and the
+// reason in a one-line message. Loads are serialized: Assimp's logger, which load_mesh listens
+// to during the import, is one per process.
 Mesh load_mesh(const std::filesystem::path& path);
 
 // Smooth vertex normals from the triangles (area-weighted).

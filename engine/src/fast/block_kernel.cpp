@@ -187,8 +187,10 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
   // group relative to its first pixel, and the per-sample offsets of edges and depth.
   int32_t step_x[3], step_y[3];
   for (int e = 0; e < 3; ++e) {
-    step_x[e] = t.a[e] * (1 << bits);
-    step_y[e] = t.b[e] * (1 << bits);
+    // Only narrow triangles step edges in int32 (|a| << bits < 2^28); the wide path reads
+    // coverage bits computed in int64 instead.
+    step_x[e] = t.narrow ? t.a[e] * (1 << bits) : 0;
+    step_y[e] = t.narrow ? t.b[e] * (1 << bits) : 0;
   }
   const auto lane_x = hn::Load(di, kPixels.x);
   const auto lane_y = hn::Load(di, kPixels.y);
@@ -202,7 +204,8 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
   float z_offset[16];
   for (uint32_t s = 0; s < samples; ++s) {
     for (int e = 0; e < 3; ++e) {
-      edge_offset[s][e] = kMulti ? t.a[e] * tc.sample_x[s] + t.b[e] * tc.sample_y[s] : 0;
+      edge_offset[s][e] =
+          kMulti && t.narrow ? t.a[e] * tc.sample_x[s] + t.b[e] * tc.sample_y[s] : 0;
     }
     z_offset[s] = kMulti ? t.z_dx * tc.sample_fx[s] + t.z_dy * tc.sample_fy[s] : 0.0f;
   }

@@ -1,0 +1,278 @@
+// tessera-render, the command-line renderer (samples/tessera_render.cpp), run as a user runs
+// it: it renders the demo scene, captures and meshes to images and reports its speed; bad
+// arguments and bad files end it with a non-zero exit, one line on stderr that names the
+// argument or file, and no image.
+// (The one test file that reads images, so the one that includes OpenImageIO.)
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+#include "tessera/tessera.hpp"
+#include "tests/temp_dir.hpp"
+
+namespace tessera {
+namespace {
+
+using test::read_file;
+using test::TempDir;
+using test::write_file;
+
+// For the shell. (Built with append: GCC 12 warns falsely about "'" + s + "'" here.)
+std::string quoted(const std::filesystem::path& path) {
+  std::string s(1, '\'');
+  s.append(path.string());
+  s.push_back('\'');
+  return s;
+}
+
+struct RunResult {
+  bool exited = false;  // false: killed by a signal
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs tessera-render with `args` (already quoted where needed), capturing stdout and stderr.
+RunResult run_render(const TempDir& dir, const std::string& args) {
+  const std::filesystem::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command =
+      quoted(TESSERA_RENDER_EXE) + " " + args + " >" + quoted(out) + " 2>" + quoted(err);
+  const int status = std::system(command.c_str());
+  RunResult r;
+  r.exited = status != -1 && WIFEXITED(status);
+  if (r.exited) r.exit_code = WEXITSTATUS(status);
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  std::vector<float> pixels;  // top row first, `channels` per pixel, 0..1 for 8-bit files
+
+  const float* at(int x, int y) const { return &pixels[(size_t(y) * width + x) * channels]; }
+};
+
+Image read_image(const std::filesystem::path& path) {
+  Image image;
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) {
+    ADD_FAILURE() << "cannot read " << path << ": " << OIIO::geterror();
+    return image;
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  image.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
+  EXPECT_TRUE(in->read_image(/*subimage=*/0, /*miplevel=*/0, /*chbegin=*/0, spec.nchannels,
+                             OIIO::TypeDesc::FLOAT, image.pixels.data()))
+      << in->geterror();
+  return image;
+}
+
+// The lines of `text` that start with `prefix`.
+std::vector<std::string> lines_starting_with(const std::string& text, const std::string& prefix) {
+  std::vector<std::string> found;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind(prefix, 0) == 0) found.push_back(line);
+  }
+  return found;
+}
+
+// A capture of a `width` x `height` frame filled by one triangle of colour `rgba`.
+void write_filled_capture(const std::filesystem::path& path, uint32_t width, uint32_t height,
+                          std::array<float, 4> rgba) {
+  Capture c;
+  c.width = width;
+  c.height = height;
+  c.positions = {{-1, -1, 0, 1}, {3, -1, 0, 1}, {-1, 3, 0, 1}};
+  for (int v = 0; v < 3; ++v)
+    c.colors.insert(c.colors.end(), rgba.begin(), rgba.end());
+  save_capture(path, c);
+}
+
+TEST(Cli, DemoSceneWritesAPngAndPrintsTheThroughput) {
+  TempDir dir;
+  const RunResult r =
+      run_render(dir, "--width 96 --height 64 --samples 1 -o " + quoted(dir / "demo.png"));
+  ASSERT_TRUE(r.exited);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_NE(r.out.find("Mtri/s"), std::string::npos) << r.out;
+  const Image image = read_image(dir / "demo.png");
+  EXPECT_EQ(image.width, 96);
+  EXPECT_EQ(image.height, 64);
+  EXPECT_EQ(image.channels, 4);
+  // The scene is drawn: the centre pixel is not the clear colour (0.08, 0.09, 0.11).
+  const float* centre = image.at(48, 32);
+  EXPECT_GT(std::abs(centre[0] - 0.08f) + std::abs(centre[1] - 0.09f) + std::abs(centre[2] - 0.11f),
+            0.05f);
+}
+
+TEST(Cli, CaptureRendersAtItsOwnSizeInItsColours) {
+  TempDir dir;
+  write_filled_capture(dir / "green.tri", 8, 6, {0.0f, 1.0f, 0.0f, 1.0f});
+  const RunResult r =
+      run_render(dir, quoted(dir / "green.tri") + " -o " + quoted(dir / "green.png"));
+  ASSERT_TRUE(r.exited);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const Image image = read_image(dir / "green.png");
+  ASSERT_EQ(image.width, 8);
+  ASSERT_EQ(image.height, 6);
+  for (int y = 0; y < 6; ++y) {
+    for (int x = 0; x < 8; ++x) {
+      EXPECT_EQ(image.at(x, y)[0], 0.0f) << x << "," << y;
+      EXPECT_EQ(image.at(x, y)[1], 1.0f) << x << "," << y;
+      EXPECT_EQ(image.at(x, y)[2], 0.0f) << x << "," << y;
+    }
+  }
+}
+
+TEST(Cli, MeshRendersFramedInTheImage) {
+  TempDir dir;
+  write_file(dir / "quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+  const RunResult r = run_render(dir, quoted(dir / "quad.obj") +
+                                          " --width 40 --height 30 --samples 1 --eye 0,0,5 -o " +
+                                          quoted(dir / "quad.png"));
+  ASSERT_TRUE(r.exited);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 triangles"), std::string::npos) << r.out;
+  const Image image = read_image(dir / "quad.png");
+  ASSERT_EQ(image.width, 40);
+  const float* centre = image.at(20, 15);
+  const float* corner = image.at(0, 0);
+  EXPECT_GT(centre[0], 0.3f);                 // the lit grey quad
+  EXPECT_NEAR(corner[0], 0.08f, 1.0f / 255);  // the clear colour around it
+}
+
+TEST(Cli, RepeatPrintsOneSummaryLineWithTheFrameCount) {
+  TempDir dir;
+  const RunResult r = run_render(
+      dir, "--repeat 3 --width 64 --height 48 --samples 1 -o " + quoted(dir / "repeat.png"));
+  ASSERT_TRUE(r.exited);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(lines_starting_with(r.out, "frames=3 median_ms=").size(), 1u) << r.out;
+}
+
+TEST(Cli, DepthOptionWritesTheDepthBufferAsAnExr) {
+  TempDir dir;
+  const RunResult r =
+      run_render(dir, "--width 64 --height 48 --samples 1 -o " + quoted(dir / "colour.png") +
+                          " --depth " + quoted(dir / "depth.exr"));
+  ASSERT_TRUE(r.exited);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file(dir / "depth.exr").substr(0, 4), std::string("\x76\x2f\x31\x01", 4));
+  const Image depth = read_image(dir / "depth.exr");
+  ASSERT_EQ(depth.width, 64);
+  ASSERT_EQ(depth.height, 48);
+  ASSERT_EQ(depth.channels, 1);
+  float nearest = 1.0f;
+  for (float d : depth.pixels) {
+    ASSERT_GE(d, 0.0f);
+    ASSERT_LE(d, 1.0f);
+    nearest = std::min(nearest, d);
+  }
+  EXPECT_LT(nearest, 1.0f);  // something was drawn in front of the far plane
+}
+
+TEST(Cli, HelpPrintsTheUsageAndExitsZero) {
+  TempDir dir;
+  const RunResult r = run_render(dir, "--help");
+  ASSERT_TRUE(r.exited);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--samples"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err, "");
+}
+
+// --- Bad arguments and bad files ---------------------------------------------------------------
+
+struct BadRun {
+  const char* name;    // for the test's name
+  std::string args;    // {dir} is replaced by the test's directory
+  std::string needle;  // what the message must name
+};
+
+void PrintTo(const BadRun& b, std::ostream* os) {
+  *os << b.name;
+}
+
+class CliRejects : public ::testing::TestWithParam<BadRun> {};
+
+std::string replace_dir(const std::string& s, const TempDir& dir) {
+  std::string out;
+  size_t from = 0;
+  for (size_t at; (at = s.find("{dir}", from)) != std::string::npos; from = at + 5) {
+    out.append(s, from, at - from);
+    out += dir.path().string();
+  }
+  out.append(s, from, std::string::npos);
+  return out;
+}
+
+TEST_P(CliRejects, WithANonZeroExitOneLineOnStderrNamingTheProblemAndNoImage) {
+  TempDir dir;
+  write_file(dir / "cut.tri", std::string("TRI1\x08\0\0\0\x06\0\0\0\x01\0\0\0", 16) + "short");
+  write_file(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  write_filled_capture(dir / "ok.tri", 8, 6, {1.0f, 0.0f, 0.0f, 1.0f});
+  const BadRun& b = GetParam();
+  const RunResult r = run_render(dir, replace_dir(b.args, dir) + " -o " + quoted(dir / "out.png"));
+  ASSERT_TRUE(r.exited) << "killed by a signal; stderr: " << r.err;
+  EXPECT_NE(r.exit_code, 0);
+  ASSERT_FALSE(r.err.empty());
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
+  EXPECT_NE(r.err.find(b.needle), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BadInput, CliRejects,
+    ::testing::Values(BadRun{"UnknownFlag", "--sideways", "--sideways"},
+                      BadRun{"SampleCountThree", "--samples 3", "--samples"},
+                      BadRun{"WidthZero", "--width 0", "--width"},
+                      BadRun{"HeightAboveTheLimit", "--height 16385", "--height"},
+                      BadRun{"WidthNotANumber", "--width wide", "--width"},
+                      BadRun{"CullSideways", "--cull sideways", "--cull"},
+                      BadRun{"FovNaN", "--fov nan", "--fov"},
+                      BadRun{"EyeWithTwoValues", "--eye 1,2", "--eye"},
+                      BadRun{"EyeAtTheTarget", "--eye 0,0,5 --target 0,0,5", "--eye"},
+                      BadRun{"UpAlongTheView", "--eye 0,0,5 --target 0,0,0 --up 0,0,1", "--up"},
+                      BadRun{"ClearNaN", "--clear 0,nan,0,1", "--clear"},
+                      BadRun{"FramebufferPastTheMemoryLimit",
+                             "--width 16384 --height 16384 --samples 16", "16 samples"},
+                      BadRun{"MissingMeshFile", "{dir}/missing.obj", "missing.obj"},
+                      BadRun{"MissingCaptureFile", "{dir}/missing.tri", "missing.tri"},
+                      BadRun{"TruncatedCapture", "{dir}/cut.tri", "cut.tri"},
+                      BadRun{"MeshIndexOutOfRange", "{dir}/bad.obj", "bad.obj"},
+                      BadRun{"SizeGivenForACapture", "{dir}/ok.tri --width 64", "--width"},
+                      BadRun{"UnwritableDepthPath",
+                             "--width 8 --height 8 --depth {dir}/no/such/depth.exr", "depth.exr"}),
+    [](const ::testing::TestParamInfo<BadRun>& p) { return std::string(p.param.name); });
+
+TEST(Cli, UnwritableOutputPathIsRejectedNamingIt) {
+  TempDir dir;
+  const RunResult r = run_render(dir, "--width 8 --height 8 -o " + quoted(dir / "no" / "such.png"));
+  ASSERT_TRUE(r.exited);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
+  EXPECT_NE(r.err.find("such.png"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace tessera

@@ -1,0 +1,506 @@
+// Mesh loading (mesh.hpp): small OBJ, PLY and glTF files written here load into the triangles,
+// colours and normals they describe; malformed ones are an Error with a one-line message that
+// names the file and the problem, never a crash or an abort inside Assimp; and the models that
+// ship with Assimp (scripts/install-deps.sh installs them) load or are rejected as they should.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <initializer_list>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "tessera/tessera.hpp"
+#include "tests/temp_dir.hpp"
+
+namespace tessera {
+namespace {
+
+using test::read_file;
+using test::TempDir;
+using test::write_file;
+
+const std::filesystem::path kAssimpModels = "/usr/share/assimp/models";
+
+constexpr const char* kQuadObj =
+    "v 0 0 0\n"
+    "v 1 0 0\n"
+    "v 1 1 0\n"
+    "v 0 1 0\n"
+    "f 1 2 3 4\n";
+
+// Loads and expects Error(code) whose one-line message names the file and holds every one of
+// `parts`; the file is left as it was.
+void expect_load_error(const std::filesystem::path& path, ErrorCode code,
+                       std::initializer_list<std::string> parts) {
+  const std::string bytes_before = read_file(path);
+  try {
+    load_mesh(path);
+    ADD_FAILURE() << "expected tessera::Error for " << path;
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(e.code(), code) << message;
+    EXPECT_NE(message.find(path.filename().string()), std::string::npos) << message;
+    for (const std::string& part : parts) {
+      EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+    }
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  EXPECT_EQ(read_file(path), bytes_before);
+}
+
+// Every index names a vertex, every array has one entry per position, all values finite.
+void expect_consistent(const Mesh& mesh) {
+  EXPECT_EQ(mesh.indices.size() % 3, 0u);
+  for (uint32_t i : mesh.indices)
+    ASSERT_LT(i, mesh.positions.size());
+  EXPECT_EQ(mesh.normals.size(), mesh.positions.size());
+  EXPECT_EQ(mesh.colors.size(), mesh.positions.size());
+  for (const glm::vec3& p : mesh.positions) {
+    ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+  }
+  for (const glm::vec3& n : mesh.normals) {
+    ASSERT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z));
+  }
+}
+
+// The colour of the vertex at `position`.
+glm::vec4 color_at(const Mesh& mesh, glm::vec3 position) {
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    if (mesh.positions[i] == position) return mesh.colors[i];
+  }
+  ADD_FAILURE() << "no vertex at (" << position.x << ", " << position.y << ", " << position.z
+                << ")";
+  return glm::vec4(-1.0f);
+}
+
+void expect_unit_quad(const Mesh& mesh, glm::vec3 offset = glm::vec3(0.0f)) {
+  expect_consistent(mesh);
+  EXPECT_EQ(mesh.triangle_count(), 2u);
+  EXPECT_EQ(mesh.positions.size(), 4u);  // shared corners are merged
+  const Bounds b = mesh_bounds(mesh);
+  EXPECT_EQ(b.min, offset + glm::vec3(0, 0, 0));
+  EXPECT_EQ(b.max, offset + glm::vec3(1, 1, 0));
+  for (const glm::vec3& n : mesh.normals) {
+    EXPECT_NEAR(n.z, 1.0f, 1e-6f);  // counter-clockwise in x-y faces +z
+  }
+}
+
+// --- glTF written by hand: a JSON document with its buffer inline as a data URI ------------
+
+std::string base64(const std::string& bytes) {
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t v = static_cast<uint32_t>(static_cast<unsigned char>(bytes[i])) << 16;
+    if (i + 1 < bytes.size())
+      v |= static_cast<uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) v |= static_cast<uint32_t>(static_cast<unsigned char>(bytes[i + 2]));
+    out += kDigits[(v >> 18) & 63];
+    out += kDigits[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kDigits[v & 63] : '=';
+  }
+  return out;
+}
+
+template <typename T>
+std::string bytes_of(const std::vector<T>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// One triangle-list primitive with float positions and uint16 indices, a base colour, and one
+// node with a translation.
+std::string gltf(const std::vector<float>& positions, const std::vector<uint16_t>& indices,
+                 const char* translation = "[0, 0, 0]") {
+  std::string buffer = bytes_of(positions) + bytes_of(indices);
+  const size_t position_bytes = positions.size() * sizeof(float);
+  return R"({
+  "asset": {"version": "2.0"},
+  "scene": 0,
+  "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0, "translation": )" +
+         std::string(translation) + R"(}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+  "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.1, 0.2, 1.0]}}],
+  "buffers": [{"byteLength": )" +
+         std::to_string(buffer.size()) + R"(, "uri": "data:application/octet-stream;base64,)" +
+         base64(buffer) + R"("}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": )" +
+         std::to_string(position_bytes) + R"(, "target": 34962},
+    {"buffer": 0, "byteOffset": )" +
+         std::to_string(position_bytes) + R"(, "byteLength": )" +
+         std::to_string(indices.size() * 2) + R"(, "target": 34963}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": )" +
+         std::to_string(positions.size() / 3) + R"(, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5123, "count": )" +
+         std::to_string(indices.size()) + R"(, "type": "SCALAR"}]
+})";
+}
+
+const std::vector<float> kQuadPositions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+
+// --- Well-formed files -------------------------------------------------------------------------
+
+TEST(MeshLoading, ObjQuadBecomesTwoTrianglesWithComputedNormals) {
+  TempDir dir;
+  write_file(dir / "quad.obj", kQuadObj);
+  expect_unit_quad(load_mesh(dir / "quad.obj"));
+}
+
+TEST(MeshLoading, ObjVertexColoursBecomeTheMeshColours) {
+  TempDir dir;
+  write_file(dir / "colours.obj",
+             "v 0 0 0 1 0 0\n"
+             "v 1 0 0 0 1 0\n"
+             "v 1 1 0 0 0 1\n"
+             "v 0 1 0 1 1 1\n"
+             "f 1 2 3 4\n");
+  const Mesh mesh = load_mesh(dir / "colours.obj");
+  expect_unit_quad(mesh);
+  EXPECT_EQ(color_at(mesh, {0, 0, 0}), glm::vec4(1, 0, 0, 1));
+  EXPECT_EQ(color_at(mesh, {1, 0, 0}), glm::vec4(0, 1, 0, 1));
+  EXPECT_EQ(color_at(mesh, {1, 1, 0}), glm::vec4(0, 0, 1, 1));
+  EXPECT_EQ(color_at(mesh, {0, 1, 0}), glm::vec4(1, 1, 1, 1));
+}
+
+TEST(MeshLoading, ObjMaterialDiffuseColourIsTheMeshColour) {
+  TempDir dir;
+  write_file(dir / "quad.mtl", "newmtl red\nKd 1 0.25 0\n");
+  write_file(dir / "red.obj", std::string("mtllib quad.mtl\nusemtl red\n") + kQuadObj);
+  const Mesh mesh = load_mesh(dir / "red.obj");
+  expect_unit_quad(mesh);
+  for (const glm::vec4& c : mesh.colors)
+    EXPECT_EQ(c, glm::vec4(1, 0.25f, 0, 1));
+}
+
+TEST(MeshLoading, PlyQuadWithVertexColoursLoads) {
+  TempDir dir;
+  write_file(dir / "quad.ply",
+             "ply\nformat ascii 1.0\n"
+             "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+             "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+             "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+             "0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 255 255 255\n"
+             "4 0 1 2 3\n");
+  const Mesh mesh = load_mesh(dir / "quad.ply");
+  expect_unit_quad(mesh);
+  EXPECT_EQ(color_at(mesh, {0, 0, 0}), glm::vec4(1, 0, 0, 1));
+  EXPECT_EQ(color_at(mesh, {1, 1, 0}), glm::vec4(0, 0, 1, 1));
+}
+
+TEST(MeshLoading, GltfQuadLoadsWithItsBaseColourAndNodeTranslation) {
+  TempDir dir;
+  write_file(dir / "quad.gltf", gltf(kQuadPositions, {0, 1, 2, 0, 2, 3}, "[10, 0, 0]"));
+  const Mesh mesh = load_mesh(dir / "quad.gltf");
+  expect_unit_quad(mesh, {10, 0, 0});
+  for (const glm::vec4& c : mesh.colors)
+    EXPECT_EQ(c, glm::vec4(0.8f, 0.1f, 0.2f, 1.0f));
+}
+
+TEST(MeshLoading, TextWithAByteOrderMarkLoadsLikeWithout) {
+  TempDir dir;
+  const std::string text = kQuadObj;
+  std::string utf16le = "\xFF\xFE", utf16be = "\xFE\xFF";
+  for (char c : text) {
+    utf16le += c;
+    utf16le += '\0';
+    utf16be += '\0';
+    utf16be += c;
+  }
+  write_file(dir / "utf8.obj", "\xEF\xBB\xBF" + text);
+  write_file(dir / "utf16le.obj", utf16le);
+  write_file(dir / "utf16be.obj", utf16be);
+  const Mesh plain = [&] {
+    write_file(dir / "plain.obj", text);
+    return load_mesh(dir / "plain.obj");
+  }();
+  for (const char* name : {"utf8.obj", "utf16le.obj", "utf16be.obj"}) {
+    SCOPED_TRACE(name);
+    const Mesh mesh = load_mesh(dir / name);
+    EXPECT_EQ(mesh.positions, plain.positions);
+    EXPECT_EQ(mesh.indices, plain.indices);
+  }
+}
+
+// --- Missing and malformed files ---------------------------------------------------------------
+
+TEST(MeshLoading, MissingFileIsAnIoErrorNamingTheFile) {
+  TempDir dir;
+  expect_load_error(dir / "missing.obj", ErrorCode::kIo, {"no such file"});
+}
+
+TEST(MeshLoading, DirectoryIsAnIoErrorNamingIt) {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "folder.obj");
+  expect_load_error(dir / "folder.obj", ErrorCode::kIo, {"not a regular file"});
+}
+
+TEST(MeshLoading, PointOnlyObjHasNoTriangles) {
+  TempDir dir;
+  write_file(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n");
+  expect_load_error(dir / "points.obj", ErrorCode::kInvalidInput, {"no triangles"});
+}
+
+TEST(MeshLoading, VerticesWithoutFacesHaveNoTriangles) {
+  TempDir dir;
+  write_file(dir / "cloud.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  expect_load_error(dir / "cloud.obj", ErrorCode::kInvalidInput, {"no triangles"});
+}
+
+TEST(MeshLoading, LineOnlyObjHasNoTriangles) {
+  TempDir dir;
+  write_file(dir / "lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n");
+  expect_load_error(dir / "lines.obj", ErrorCode::kInvalidInput, {"no triangles"});
+}
+
+TEST(MeshLoading, ObjFaceIndexOutOfRangeIsRejected) {
+  TempDir dir;
+  write_file(dir / "index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  expect_load_error(dir / "index.obj", ErrorCode::kInvalidInput, {"out of range"});
+}
+
+TEST(MeshLoading, ObjNaNPositionIsRejectedNamingTheVertex) {
+  TempDir dir;
+  write_file(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  expect_load_error(dir / "nan.obj", ErrorCode::kInvalidInput, {"vertex 2", "not finite"});
+}
+
+TEST(MeshLoading, ObjInfinitePositionIsRejectedNamingTheVertex) {
+  TempDir dir;
+  write_file(dir / "inf.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n");
+  expect_load_error(dir / "inf.obj", ErrorCode::kInvalidInput, {"vertex 1", "not finite"});
+}
+
+TEST(MeshLoading, EmptyFileIsRejected) {
+  TempDir dir;
+  write_file(dir / "empty.obj", "");
+  expect_load_error(dir / "empty.obj", ErrorCode::kInvalidInput, {});
+}
+
+TEST(MeshLoading, TextThatIsNotAMeshIsRejected) {
+  TempDir dir;
+  write_file(dir / "words.obj", "this is not a mesh\n");
+  expect_load_error(dir / "words.obj", ErrorCode::kInvalidInput, {"no triangles"});
+}
+
+TEST(MeshLoading, UnknownFormatIsRejected) {
+  TempDir dir;
+  write_file(dir / "mesh.xyz", "nothing Assimp knows\n");
+  expect_load_error(dir / "mesh.xyz", ErrorCode::kInvalidInput, {"cannot load mesh"});
+}
+
+TEST(MeshLoading, Utf16TextWithAnOddByteCountIsRejected) {
+  TempDir dir;
+  write_file(dir / "odd.obj", std::string("\xFF\xFEv\0 ", 5));
+  expect_load_error(dir / "odd.obj", ErrorCode::kInvalidInput, {"odd number of bytes"});
+}
+
+constexpr const char* kPlyHeader =
+    "ply\nformat ascii 1.0\n"
+    "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+
+TEST(MeshLoading, PlyWrongMagicIsRejected) {
+  TempDir dir;
+  write_file(dir / "magic.ply", "plx\nformat ascii 1.0\nend_header\n");
+  expect_load_error(dir / "magic.ply", ErrorCode::kInvalidInput, {"magic"});
+}
+
+// Assimp's PLY reader turns such a face into one without indices, and its Triangulate step
+// asserts on that (an abort): the loader must catch it first.
+TEST(MeshLoading, PlyFaceIndexOutOfRangeIsRejectedWithoutAborting) {
+  TempDir dir;
+  write_file(dir / "index.ply", std::string(kPlyHeader) +
+                                    "element face 1\nproperty list uchar int vertex_indices\n"
+                                    "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n");
+  expect_load_error(dir / "index.ply", ErrorCode::kInvalidInput, {"face 0"});
+}
+
+// Assimp would repeat the last face.
+TEST(MeshLoading, PlyWithFewerFacesThanItsHeaderDeclaresIsRejected) {
+  TempDir dir;
+  write_file(dir / "cut.ply", std::string(kPlyHeader) +
+                                  "element face 2\nproperty list uchar int vertex_indices\n"
+                                  "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_load_error(dir / "cut.ply", ErrorCode::kInvalidInput,
+                    {"truncated PLY file", "2 face elements", "ends after 1"});
+}
+
+TEST(MeshLoading, PlyWithMoreDataThanItsHeaderDeclaresIsRejected) {
+  TempDir dir;
+  write_file(dir / "long.ply", std::string(kPlyHeader) +
+                                   "element face 1\nproperty list uchar int vertex_indices\n"
+                                   "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 2 1 0\n");
+  expect_load_error(dir / "long.ply", ErrorCode::kInvalidInput,
+                    {"more data than its header declares"});
+}
+
+TEST(MeshLoading, PlyListLengthThatIsNotANumberIsRejected) {
+  TempDir dir;
+  write_file(dir / "list.ply", std::string(kPlyHeader) +
+                                   "element face 1\nproperty list uchar int vertex_indices\n"
+                                   "end_header\n0 0 0\n1 0 0\n0 1 0\n2.5 0 1 2\n");
+  expect_load_error(dir / "list.ply", ErrorCode::kInvalidInput, {"face 0", "list length '2.5'"});
+}
+
+// A binary PLY quad: 4 float vertices, one face of 4 int indices with a uchar length, in the
+// given byte order.
+std::string binary_ply_quad(bool big_endian) {
+  std::string header = std::string("ply\nformat ") +
+                       (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                       " 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                       "property float z\nelement face 1\n"
+                       "property list uchar int vertex_indices\nend_header\n";
+  auto put = [&](uint32_t bits) {
+    for (int k = 0; k < 4; ++k) {
+      const int shift = big_endian ? 24 - 8 * k : 8 * k;
+      header += static_cast<char>((bits >> shift) & 0xFF);
+    }
+  };
+  for (float f : kQuadPositions) {
+    uint32_t bits;
+    std::memcpy(&bits, &f, 4);
+    put(bits);
+  }
+  header += '\x04';
+  for (uint32_t i : {0u, 1u, 2u, 3u})
+    put(i);
+  return header;
+}
+
+TEST(MeshLoading, BinaryPlyQuadLoadsInEitherByteOrder) {
+  TempDir dir;
+  write_file(dir / "little.ply", binary_ply_quad(false));
+  write_file(dir / "big.ply", binary_ply_quad(true));
+  expect_unit_quad(load_mesh(dir / "little.ply"));
+  expect_unit_quad(load_mesh(dir / "big.ply"));
+}
+
+TEST(MeshLoading, BinaryPlyCutShortIsRejected) {
+  TempDir dir;
+  const std::string whole = binary_ply_quad(false);
+  write_file(dir / "cut.ply", whole.substr(0, whole.size() - 3));
+  expect_load_error(dir / "cut.ply", ErrorCode::kInvalidInput,
+                    {"truncated PLY file", "1 face elements", "ends after 0"});
+  write_file(dir / "cut_vertices.ply", whole.substr(0, whole.size() - 20));
+  expect_load_error(dir / "cut_vertices.ply", ErrorCode::kInvalidInput,
+                    {"truncated PLY file", "4 vertex elements", "ends after 3"});
+}
+
+TEST(MeshLoading, BinaryPlyWithTrailingBytesIsRejected) {
+  TempDir dir;
+  write_file(dir / "long.ply", binary_ply_quad(false) + "xyz");
+  expect_load_error(dir / "long.ply", ErrorCode::kInvalidInput, {"3 bytes more"});
+}
+
+TEST(MeshLoading, GltfIndexOutOfRangeIsRejectedThoughAssimpOnlyWarns) {
+  TempDir dir;
+  write_file(dir / "index.gltf", gltf(kQuadPositions, {0, 1, 2, 0, 2, 9}));
+  expect_load_error(dir / "index.gltf", ErrorCode::kInvalidInput, {"out-of-range indices"});
+}
+
+TEST(MeshLoading, GltfWithEveryIndexOutOfRangeIsRejected) {
+  TempDir dir;
+  write_file(dir / "all.gltf", gltf(kQuadPositions, {4, 5, 6}));
+  expect_load_error(dir / "all.gltf", ErrorCode::kInvalidInput, {"out-of-range indices"});
+}
+
+TEST(MeshLoading, GltfNaNPositionIsRejected) {
+  TempDir dir;
+  std::vector<float> positions = kQuadPositions;
+  positions[7] = std::numeric_limits<float>::quiet_NaN();  // vertex 2, y
+  write_file(dir / "nan.gltf", gltf(positions, {0, 1, 2, 0, 2, 3}));
+  expect_load_error(dir / "nan.gltf", ErrorCode::kInvalidInput, {"vertex 2", "not finite"});
+}
+
+TEST(MeshLoading, TruncatedGltfIsRejected) {
+  TempDir dir;
+  const std::string whole = gltf(kQuadPositions, {0, 1, 2, 0, 2, 3});
+  write_file(dir / "cut.gltf", whole.substr(0, whole.size() / 2));
+  expect_load_error(dir / "cut.gltf", ErrorCode::kInvalidInput, {});
+}
+
+TEST(MeshLoading, GltfWithAMissingBufferFileIsRejectedNamingIt) {
+  TempDir dir;
+  std::string text = gltf(kQuadPositions, {0, 1, 2, 0, 2, 3});
+  const size_t uri = text.find("data:");
+  text.replace(uri, text.find('"', uri) - uri, "quad.bin");
+  write_file(dir / "nobin.gltf", text);
+  expect_load_error(dir / "nobin.gltf", ErrorCode::kInvalidInput, {"quad.bin"});
+}
+
+// --- The models that ship with Assimp ------------------------------------------------------
+
+class AssimpModels : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!std::filesystem::is_directory(kAssimpModels)) {
+      GTEST_SKIP() << kAssimpModels << " is missing (scripts/install-deps.sh installs the "
+                   << "assimp-testmodels package)";
+    }
+  }
+};
+
+TEST_F(AssimpModels, WellFormedModelsLoadConsistent) {
+  for (const char* name :
+       {"OBJ/spider.obj", "OBJ/WusonOBJ.obj", "OBJ/cube_with_vertexcolors.obj", "PLY/Wuson.ply",
+        "PLY/cube_binary.ply", "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+        "glTF2/BoxTextured-glTF/BoxTextured.gltf",
+        "glTF2/glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_06.gltf"}) {
+    SCOPED_TRACE(name);
+    const Mesh mesh = load_mesh(kAssimpModels / name);
+    EXPECT_GT(mesh.triangle_count(), 0u);
+    expect_consistent(mesh);
+  }
+}
+
+TEST_F(AssimpModels, BoxIsTwelveTriangles) {
+  const Mesh mesh = load_mesh(kAssimpModels / "OBJ/box.obj");
+  EXPECT_EQ(mesh.triangle_count(), 12u);
+  EXPECT_EQ(mesh.positions.size(), 8u);
+}
+
+TEST_F(AssimpModels, Utf16BoxIsTheSameMeshAsThePlainBox) {
+  const Mesh plain = load_mesh(kAssimpModels / "OBJ/box.obj");
+  const Mesh utf16 = load_mesh(kAssimpModels / "OBJ/box_UTF16BE.obj");
+  EXPECT_EQ(utf16.positions, plain.positions);
+  EXPECT_EQ(utf16.indices, plain.indices);
+}
+
+TEST_F(AssimpModels, BrokenModelsAreRejectedWithTheReason) {
+  struct Case {
+    const char* name;
+    const char* reason;
+  };
+  for (const Case& c : std::initializer_list<Case>{
+           {"glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "not finite"},
+           {"glTF2/IndexOutOfRange/IndexOutOfRange.gltf", "out-of-range indices"},
+           {"glTF2/IndexOutOfRange/AllIndicesOutOfRange.gltf", "out-of-range indices"},
+           {"glTF2/SchemaFailures/sceneWrongType.gltf", "\"scene\" was not of type"},
+           {"glTF2/wrongTypes/badArray.gltf", "was not of type \"array\""},
+           {"glTF2/wrongTypes/badExtension.gltf", "was not of type \"object\""},
+           {"glTF2/wrongTypes/badNumber.gltf", "was not of type \"number\""},
+           {"glTF2/wrongTypes/badObject.gltf", "was not of type \"object\""},
+           {"glTF2/wrongTypes/badString.gltf", "was not of type \"string\""},
+           {"glTF2/wrongTypes/badUint.gltf", "was not of type \"uint\""},
+           {"glTF2/MissingBin/BoxTextured.gltf", "BoxTextured0.bin"},
+           {"OBJ/point_cloud.obj", "no triangles"},
+           {"OBJ/testpoints.obj", "no triangles"},
+           {"PLY/points.ply", "no triangles"},
+           {"PLY/pond.0.ply", "truncated PLY file"},
+           {"PLY/issue623.ply", "list length"},
+       }) {
+    SCOPED_TRACE(c.name);
+    expect_load_error(kAssimpModels / c.name, ErrorCode::kInvalidInput, {c.reason});
+  }
+}
+
+}  // namespace
+}  // namespace tessera
