@@ -1,6 +1,8 @@
 // Sutherland-Hodgman clipping of triangles against the near, far, w and guard-band planes.
 #include "engine/src/clip.hpp"
 
+#include <algorithm>
+
 namespace tessera {
 
 namespace {
@@ -13,11 +15,13 @@ struct Plane {
   double a, b, c, e, f;
   Pin pin;
   double distance(const ClipVertex& v) const { return a * v.x + b * v.y + c * v.z + e * v.w + f; }
-  // Puts an interpolated vertex exactly on the plane. Interpolating across a huge range of w
-  // (say from 1e38 to 1e-30) cancels catastrophically; pinning keeps every clipped vertex
-  // inside the planes already applied, so w >= kMinClipW and |x|, |y| <= g * w hold, and
-  // window coordinates stay within the guard band.
-  void put_on(ClipVertex& v) const {
+  // Puts an interpolated vertex exactly on the plane, and back inside the planes applied
+  // before this one (they precede it in clip_planes()). Interpolating across a huge range of w
+  // (say from 1e38 to 1e-30) cancels catastrophically, and the result could leave an earlier
+  // plane or reach w = 0; pinned and clamped, every clipped vertex keeps w >= kMinClipW,
+  // 0 <= z <= w and |x|, |y| <= g * w, so window coordinates stay within the guard band.
+  void put_on(ClipVertex& v, double gx) const {
+    if (pin > Pin::kWMin) v.w = std::max(v.w, kMinClipW);
     switch (pin) {
       case Pin::kZZero:
         v.z = 0.0;
@@ -41,6 +45,8 @@ struct Plane {
         v.y = e * v.w;
         break;
     }
+    if (pin > Pin::kZToW) v.z = std::clamp(v.z, 0.0, v.w);
+    if (pin > Pin::kXPlus) v.x = std::clamp(v.x, -gx * v.w, gx * v.w);
   }
 };
 
@@ -60,7 +66,7 @@ ClipVertex intersect(const ClipVertex& inside, double d_in, const ClipVertex& ou
 }
 
 // Clips `poly` against one plane in place. Returns whether the plane cut anything.
-bool clip_against(ClipPolygon& poly, const Plane& plane, uint32_t attribute_count) {
+bool clip_against(ClipPolygon& poly, const Plane& plane, double gx, uint32_t attribute_count) {
   std::array<double, kMaxClipVertices> d{};
   bool any_out = false;
   for (int i = 0; i < poly.count; ++i) {
@@ -79,10 +85,10 @@ bool clip_against(ClipPolygon& poly, const Plane& plane, uint32_t attribute_coun
     if (p_in) result.vertices[result.count++] = p;
     if (p_in && !q_in) {
       result.vertices[result.count] = intersect(p, d[i], q, d[j], attribute_count);
-      plane.put_on(result.vertices[result.count++]);
+      plane.put_on(result.vertices[result.count++], gx);
     } else if (!p_in && q_in) {
       result.vertices[result.count] = intersect(q, d[j], p, d[i], attribute_count);
-      plane.put_on(result.vertices[result.count++]);
+      plane.put_on(result.vertices[result.count++], gx);
     }
   }
   poly = result;
@@ -124,7 +130,7 @@ ClipResult clip_triangle(const std::array<ClipVertex, 3>& in, uint32_t attribute
     out.vertices[i] = in[i];
   ClipResult result;
   for (const Plane& plane : planes) {
-    result.clipped |= clip_against(out, plane, attribute_count);
+    result.clipped |= clip_against(out, plane, guard_band.x, attribute_count);
     if (out.count < 3) {
       out.count = 0;
       return result;
