@@ -8,7 +8,8 @@
 # environment: BUILD_DIR (default build/release) holds samples/tessera-render and
 #   benchmarks/tessera_llvmpipe_bench; TESSERA_WORKLOADS (default build/workloads, see
 #   scripts/make-workloads.sh); FRAMES timed frames per run (default 10); THREADS (default
-#   "1 2"); LOG keeps every raw output line (default: a temporary file, removed).
+#   "1 2"); SAMPLES (default "1 4"); LOG keeps every raw output line (default: a temporary
+#   file, removed).
 set -euo pipefail
 
 build=${BUILD_DIR:-build/release}
@@ -17,6 +18,7 @@ peer=$build/benchmarks/tessera_llvmpipe_bench
 workloads_dir=${TESSERA_WORKLOADS:-build/workloads}
 frames=${FRAMES:-10}
 threads_list=${THREADS:-1 2}
+samples_list=${SAMPLES:-1 4}
 if [ $# -gt 0 ]; then workloads=("$@"); else workloads=(tiny small medium large huge grid); fi
 
 for exe in "$render" "$peer"; do
@@ -42,12 +44,14 @@ for w in "${workloads[@]}"; do
     echo "compare-llvmpipe: $capture missing (run scripts/make-workloads.sh), skipped" >&2
     continue
   fi
+  for s in $samples_list; do
   for t in $threads_list; do
-    echo "compare-llvmpipe: $w, $t thread(s)" >&2
+    echo "compare-llvmpipe: $w, $s sample(s), $t thread(s)" >&2
     # A failed run leaves its row n/a; its messages are in the log.
-    "$render" "$capture" --backend fast --samples 1 --threads "$t" --repeat "$frames" \
+    "$render" "$capture" --backend fast --samples "$s" --threads "$t" --repeat "$frames" \
       --clear 0,0,0,1 -o "$work/tessera.png" >"$work/tessera.out" 2>&1 || true
-    "$peer" "$capture" --threads "$t" --frames "$frames" >"$work/peer.out" 2>&1 || true
+    "$peer" "$capture" --threads "$t" --samples "$s" --frames "$frames" >"$work/peer.out" 2>&1 ||
+      true
     cat "$work/tessera.out" "$work/peer.out" >>"$log"
     tessera_line=$(grep '^frames=' "$work/tessera.out" || true)
     peer_line=$(grep '^llvmpipe ' "$work/peer.out" || true)
@@ -58,14 +62,15 @@ for w in "${workloads[@]}"; do
     if [ "$tm" != n/a ] && [ "$lm" != n/a ]; then
       ratio=$(awk -v l="$lm" -v t="$tm" 'BEGIN { printf "%.2f", l / t }')
     fi
-    rows+=("| $w | $t | $tm | $lm | $ratio | $(field mtri_s " $tessera_line") | $(field mtri_s "$peer_line") |")
+    rows+=("| $w | $s | $t | $tm | $lm | $ratio | $(field mtri_s " $tessera_line") | $(field mtri_s "$peer_line") |")
+  done
   done
 done
 
 echo
-echo "| workload | threads | tessera median ms | llvmpipe median ms | ratio (llvmpipe/tessera) | tessera Mtri/s | llvmpipe Mtri/s |"
-echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"
+echo "| workload | samples | threads | tessera median ms | llvmpipe median ms | ratio (llvmpipe/tessera) | tessera Mtri/s | llvmpipe Mtri/s |"
+echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 printf '%s\n' "${rows[@]}"
 echo
-echo "$frames timed frames after one warm-up, 1 sample, clear + draw (+ glFinish for llvmpipe)" \
+echo "$frames timed frames after one warm-up, clear + draw (+ glFinish for llvmpipe)" \
   "per frame; threads 1 = LP_NUM_THREADS=0, 2 = LP_NUM_THREADS=2."

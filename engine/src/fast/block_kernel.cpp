@@ -200,12 +200,15 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       hn::Add(hn::Mul(lane_x, hn::Set(di, step_x[1])), hn::Mul(lane_y, hn::Set(di, step_y[1])));
   const auto lane_e2 =
       hn::Add(hn::Mul(lane_x, hn::Set(di, step_x[2])), hn::Mul(lane_y, hn::Set(di, step_y[2])));
-  int32_t edge_offset[16][3];
+  // A sample is inside edge e when E(pixel centre) + offset(sample) >= 0, i.e. when
+  // E(pixel centre) > -1 - offset: one compare per edge and sample, no add.
+  int32_t edge_threshold[16][3];
   float z_offset[16];
   for (uint32_t s = 0; s < samples; ++s) {
     for (int e = 0; e < 3; ++e) {
-      edge_offset[s][e] =
+      const int32_t offset =
           kMulti && t.narrow ? t.a[e] * tc.sample_x[s] + t.b[e] * tc.sample_y[s] : 0;
+      edge_threshold[s][e] = -1 - offset;
     }
     z_offset[s] = kMulti ? t.z_dx * tc.sample_fx[s] + t.z_dy * tc.sample_fy[s] : 0.0f;
   }
@@ -344,14 +347,10 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
           if (wide) {
             cov = hn::And(cov, hn::RebindMask(di, hn::TestBit(cov_bits, hn::Set(du, 1u << s))));
           } else {
-            // Inside when E >= 0, i.e. E > -1 (integer lanes have no >= here).
-            const auto minus_one = hn::Set(di, -1);
-            if (edge_mask & 1)
-              cov = hn::And(cov, hn::Gt(hn::Add(e0, hn::Set(di, edge_offset[s][0])), minus_one));
-            if (edge_mask & 2)
-              cov = hn::And(cov, hn::Gt(hn::Add(e1, hn::Set(di, edge_offset[s][1])), minus_one));
-            if (edge_mask & 4)
-              cov = hn::And(cov, hn::Gt(hn::Add(e2, hn::Set(di, edge_offset[s][2])), minus_one));
+            // Inside when E + offset >= 0, i.e. E > -1 - offset (integer lanes have no >=).
+            if (edge_mask & 1) cov = hn::And(cov, hn::Gt(e0, hn::Set(di, edge_threshold[s][0])));
+            if (edge_mask & 2) cov = hn::And(cov, hn::Gt(e1, hn::Set(di, edge_threshold[s][1])));
+            if (edge_mask & 4) cov = hn::And(cov, hn::Gt(e2, hn::Set(di, edge_threshold[s][2])));
           }
           if (hn::AllFalse(di, cov)) continue;
           covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
