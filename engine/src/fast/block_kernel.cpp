@@ -488,6 +488,7 @@ const KernelTable* GetKernelTable() {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include "simd/target_list.hpp"
 #include "tessera/error.hpp"
 
 namespace tessera::fast {
@@ -497,38 +498,9 @@ struct TargetEntry {
   int64_t bit;
   const KernelTable* (*table)();
 };
-constexpr TargetEntry kTargets[] = {
-#if HWY_TARGETS & HWY_AVX3_DL
-    {HWY_AVX3_DL, &N_AVX3_DL::GetKernelTable},
-#endif
-#if HWY_TARGETS & HWY_AVX3
-    {HWY_AVX3, &N_AVX3::GetKernelTable},
-#endif
-#if HWY_TARGETS & HWY_AVX2
-    {HWY_AVX2, &N_AVX2::GetKernelTable},
-#endif
-#if HWY_TARGETS & HWY_SSE4
-    {HWY_SSE4, &N_SSE4::GetKernelTable},
-#endif
-#if HWY_TARGETS & HWY_SSSE3
-    {HWY_SSSE3, &N_SSSE3::GetKernelTable},
-#endif
-#if HWY_TARGETS & HWY_SVE2
-    {HWY_SVE2, &N_SVE2::GetKernelTable},
-#endif
-#if HWY_TARGETS & HWY_SVE
-    {HWY_SVE, &N_SVE::GetKernelTable},
-#endif
-#if HWY_TARGETS & HWY_NEON
-    {HWY_NEON, &N_NEON::GetKernelTable},
-#endif
-#if HWY_TARGETS & HWY_EMU128
-    {HWY_EMU128, &N_EMU128::GetKernelTable},
-#endif
-#if HWY_TARGETS & HWY_SCALAR
-    {HWY_SCALAR, &N_SCALAR::GetKernelTable},
-#endif
-};
+#define TESSERA_TARGET_ENTRY(bit, ns) {bit, &ns::GetKernelTable},
+constexpr TargetEntry kTargets[] = {TESSERA_FOR_EACH_SIMD_TARGET(TESSERA_TARGET_ENTRY)};
+#undef TESSERA_TARGET_ENTRY
 }  // namespace
 
 const KernelTable& kernel_table(int64_t target) {

@@ -288,6 +288,7 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 #include <iterator>
+#include "simd/target_list.hpp"
 
 namespace tessera::fast {
 
@@ -296,38 +297,9 @@ struct TargetEntry {
   int64_t bit;
   SetupRangeFn fn;
 };
-constexpr TargetEntry kTargets[] = {
-#if HWY_TARGETS & HWY_AVX3_DL
-    {HWY_AVX3_DL, &N_AVX3_DL::SetupRange},
-#endif
-#if HWY_TARGETS & HWY_AVX3
-    {HWY_AVX3, &N_AVX3::SetupRange},
-#endif
-#if HWY_TARGETS & HWY_AVX2
-    {HWY_AVX2, &N_AVX2::SetupRange},
-#endif
-#if HWY_TARGETS & HWY_SSE4
-    {HWY_SSE4, &N_SSE4::SetupRange},
-#endif
-#if HWY_TARGETS & HWY_SSSE3
-    {HWY_SSSE3, &N_SSSE3::SetupRange},
-#endif
-#if HWY_TARGETS & HWY_SVE2
-    {HWY_SVE2, &N_SVE2::SetupRange},
-#endif
-#if HWY_TARGETS & HWY_SVE
-    {HWY_SVE, &N_SVE::SetupRange},
-#endif
-#if HWY_TARGETS & HWY_NEON
-    {HWY_NEON, &N_NEON::SetupRange},
-#endif
-#if HWY_TARGETS & HWY_EMU128
-    {HWY_EMU128, &N_EMU128::SetupRange},
-#endif
-#if HWY_TARGETS & HWY_SCALAR
-    {HWY_SCALAR, &N_SCALAR::SetupRange},
-#endif
-};
+#define TESSERA_TARGET_ENTRY(bit, ns) {bit, &ns::SetupRange},
+constexpr TargetEntry kTargets[] = {TESSERA_FOR_EACH_SIMD_TARGET(TESSERA_TARGET_ENTRY)};
+#undef TESSERA_TARGET_ENTRY
 }  // namespace
 
 SetupRangeFn setup_kernel(int64_t target) {
