@@ -26,7 +26,7 @@ struct Options {
   uint32_t width = 1280;
   uint32_t height = 720;
   uint32_t samples = 4;
-  uint32_t threads = 1;
+  uint32_t threads = 0;  // all cores
   uint32_t repeat = 0;
   uint32_t subpixel_bits = 8;
   double bin_budget_mib = 0;
