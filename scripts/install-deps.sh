@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config python3
   libglm-dev libtbb-dev libhwy-dev libopenimageio-dev openimageio-tools libassimp-dev libcli11-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libosmesa6-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libosmesa6-dev g++-aarch64-linux-gnu
   assimp-testmodels
 )
 
