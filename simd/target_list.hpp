@@ -68,10 +68,11 @@
 #define TESSERA_SIMD_TARGET_SCALAR(ENTRY)
 #endif
 
-#define TESSERA_FOR_EACH_SIMD_TARGET(ENTRY)                                                       \
-  TESSERA_SIMD_TARGET_AVX3_DL(ENTRY)                                                              \
-  TESSERA_SIMD_TARGET_AVX3(ENTRY) TESSERA_SIMD_TARGET_AVX2(ENTRY) TESSERA_SIMD_TARGET_SSE4(ENTRY) \
-      TESSERA_SIMD_TARGET_SSSE3(ENTRY) TESSERA_SIMD_TARGET_SVE2_128(ENTRY)                        \
-          TESSERA_SIMD_TARGET_SVE_256(ENTRY) TESSERA_SIMD_TARGET_SVE2(ENTRY)                      \
-              TESSERA_SIMD_TARGET_SVE(ENTRY) TESSERA_SIMD_TARGET_NEON(ENTRY)                      \
-                  TESSERA_SIMD_TARGET_EMU128(ENTRY) TESSERA_SIMD_TARGET_SCALAR(ENTRY)
+#define TESSERA_FOR_EACH_SIMD_TARGET(ENTRY)                                                        \
+  TESSERA_SIMD_TARGET_AVX3_DL(ENTRY)                                                               \
+  TESSERA_SIMD_TARGET_AVX3(ENTRY)                                                                  \
+  TESSERA_SIMD_TARGET_AVX2(ENTRY) TESSERA_SIMD_TARGET_SSE4(ENTRY) TESSERA_SIMD_TARGET_SSSE3(ENTRY) \
+      TESSERA_SIMD_TARGET_SVE2_128(ENTRY) TESSERA_SIMD_TARGET_SVE_256(ENTRY)                       \
+          TESSERA_SIMD_TARGET_SVE2(ENTRY) TESSERA_SIMD_TARGET_SVE(ENTRY)                           \
+              TESSERA_SIMD_TARGET_NEON(ENTRY) TESSERA_SIMD_TARGET_EMU128(ENTRY)                    \
+                  TESSERA_SIMD_TARGET_SCALAR(ENTRY)

@@ -16,17 +16,17 @@ namespace {
 void validate(const FramebufferDesc& d) {
   auto side = [](const char* name, uint32_t v) {
     if (v == 0 || v > kMaxFramebufferSize) {
-      throw Error(ErrorCode::kInvalidArgument,
-                  std::string("framebuffer ") + name + " " + std::to_string(v) +
-                      " is out of range (1.." + std::to_string(kMaxFramebufferSize) + ")");
+      throw Error(ErrorCode::kInvalidArgument, std::string("framebuffer ") + name + " " +
+                                                   std::to_string(v) + " is out of range (1.." +
+                                                   std::to_string(kMaxFramebufferSize) + ")");
     }
   };
   side("width", d.width);
   side("height", d.height);
   if (!is_valid_sample_count(d.samples)) {
-    throw Error(ErrorCode::kInvalidArgument, "framebuffer sample count " +
-                                                 std::to_string(d.samples) +
-                                                 " is not one of 1, 2, 4, 8, 16");
+    throw Error(
+        ErrorCode::kInvalidArgument,
+        "framebuffer sample count " + std::to_string(d.samples) + " is not one of 1, 2, 4, 8, 16");
   }
   if (d.color_format != ColorFormat::kRGBA8 && d.color_format != ColorFormat::kRGBA32F) {
     throw Error(ErrorCode::kInvalidArgument, "framebuffer colour format is not a ColorFormat");
@@ -61,8 +61,8 @@ Framebuffer::Framebuffer(const FramebufferDesc& desc) {
     s->hiz_max.assign(size_t{s->grid.tile_count()} * detail::kBlocksPerTile, 1.0f);
     s->hiz_valid = true;
   } catch (const std::bad_alloc&) {
-    throw Error(ErrorCode::kOutOfMemory, "framebuffer allocation of " +
-                                             std::to_string(bytes >> 20) + " MiB failed");
+    throw Error(ErrorCode::kOutOfMemory,
+                "framebuffer allocation of " + std::to_string(bytes >> 20) + " MiB failed");
   }
   storage_ = std::move(s);
 }
@@ -71,16 +71,21 @@ Framebuffer::~Framebuffer() = default;
 Framebuffer::Framebuffer(Framebuffer&&) noexcept = default;
 Framebuffer& Framebuffer::operator=(Framebuffer&&) noexcept = default;
 
-const FramebufferDesc& Framebuffer::desc() const noexcept { return storage_->desc; }
+const FramebufferDesc& Framebuffer::desc() const noexcept {
+  return storage_->desc;
+}
 
 void Framebuffer::clear_color(std::array<float, 4> rgba) {
   detail::FramebufferStorage& s = *storage_;
   if (s.desc.color_format == ColorFormat::kRGBA8) {
     std::array<uint8_t, 4> v{};
-    for (int c = 0; c < 4; ++c) v[c] = to_unorm8(rgba[c]);
-    for (size_t i = 0; i < s.rgba8.size(); i += 4) std::copy(v.begin(), v.end(), &s.rgba8[i]);
+    for (int c = 0; c < 4; ++c)
+      v[c] = to_unorm8(rgba[c]);
+    for (size_t i = 0; i < s.rgba8.size(); i += 4)
+      std::copy(v.begin(), v.end(), &s.rgba8[i]);
   } else {
-    for (size_t i = 0; i < s.rgba32f.size(); i += 4) std::copy(rgba.begin(), rgba.end(), &s.rgba32f[i]);
+    for (size_t i = 0; i < s.rgba32f.size(); i += 4)
+      std::copy(rgba.begin(), rgba.end(), &s.rgba32f[i]);
   }
 }
 
@@ -106,7 +111,8 @@ std::vector<uint8_t> Framebuffer::read_rgba8() const {
           continue;
         }
         uint32_t sum = 0;
-        for (uint32_t k = 0; k < n; ++k) sum += s.rgba8[s.sample_index(x, y, k) * 4 + c];
+        for (uint32_t k = 0; k < n; ++k)
+          sum += s.rgba8[s.sample_index(x, y, k) * 4 + c];
         out[o + c] = static_cast<uint8_t>((sum + n / 2) / n);
       }
     }
@@ -130,7 +136,8 @@ std::vector<float> Framebuffer::read_rgba32f() const {
       const size_t o = (size_t{y} * s.desc.width + x) * 4;
       for (uint32_t c = 0; c < 4; ++c) {
         float sum = 0.0f;
-        for (uint32_t k = 0; k < n; ++k) sum += s.rgba32f[s.sample_index(x, y, k) * 4 + c];
+        for (uint32_t k = 0; k < n; ++k)
+          sum += s.rgba32f[s.sample_index(x, y, k) * 4 + c];
         out[o + c] = sum / static_cast<float>(n);
       }
     }

@@ -52,16 +52,16 @@ struct Counters {
   uint64_t triangles_culled = 0;   // back-face, front-face, zero area, or outside the view
   uint64_t triangles_clipped = 0;  // crossed a clip plane and were cut
   uint64_t triangles_rasterized = 0;
-  uint64_t bin_references = 0;     // (triangle, tile) pairs binned
-  uint64_t bin_passes = 0;         // rasterization passes forced by the bin memory budget
-  uint64_t blocks_rejected = 0;    // 8x8 blocks of a triangle's tiles outside an edge
-  uint64_t blocks_accepted = 0;    // blocks fully inside all three edges
-  uint64_t blocks_partial = 0;     // blocks that needed per-sample edge tests
-  uint64_t hiz_rejected = 0;       // blocks skipped because the triangle is behind them
-  uint64_t hiz_accepted = 0;       // fully covered blocks written without reading depth
-  uint64_t samples_covered = 0;    // inside a triangle and tested (not in Hi-Z-rejected blocks)
-  uint64_t samples_passed = 0;     // covered and passed the depth test
-  uint64_t pixels_shaded = 0;      // pixels whose colour was computed (once per pixel)
+  uint64_t bin_references = 0;   // (triangle, tile) pairs binned
+  uint64_t bin_passes = 0;       // rasterization passes forced by the bin memory budget
+  uint64_t blocks_rejected = 0;  // 8x8 blocks of a triangle's tiles outside an edge
+  uint64_t blocks_accepted = 0;  // blocks fully inside all three edges
+  uint64_t blocks_partial = 0;   // blocks that needed per-sample edge tests
+  uint64_t hiz_rejected = 0;     // blocks skipped because the triangle is behind them
+  uint64_t hiz_accepted = 0;     // fully covered blocks written without reading depth
+  uint64_t samples_covered = 0;  // inside a triangle and tested (not in Hi-Z-rejected blocks)
+  uint64_t samples_passed = 0;   // covered and passed the depth test
+  uint64_t pixels_shaded = 0;    // pixels whose colour was computed (once per pixel)
 };
 
 class Renderer {

@@ -25,10 +25,10 @@ namespace {
 
 // A vertex in window space: snapped fixed-point position, depth and 1/w.
 struct WindowVertex {
-  int64_t x = 0;       // window x * 2^subpixel_bits, rounded to nearest (ties to even)
-  int64_t y = 0;       // window y (downwards) * 2^subpixel_bits
-  double z = 0;        // z / w, in [0, 1]
-  double inv_w = 0;    // 1 / w
+  int64_t x = 0;     // window x * 2^subpixel_bits, rounded to nearest (ties to even)
+  int64_t y = 0;     // window y (downwards) * 2^subpixel_bits
+  double z = 0;      // z / w, in [0, 1]
+  double inv_w = 0;  // 1 / w
   const ClipVertex* clip = nullptr;  // for the attributes
 };
 
@@ -62,18 +62,28 @@ bool is_top_left(const WindowVertex& a, const WindowVertex& b) {
 }
 
 // A sample is inside an edge when the edge function is positive, or zero on a top-left edge.
-bool inside_edge(int64_t e, bool top_left) { return e > 0 || (e == 0 && top_left); }
+bool inside_edge(int64_t e, bool top_left) {
+  return e > 0 || (e == 0 && top_left);
+}
 
 bool depth_test_passes(CompareOp op, float incoming, float stored) {
   switch (op) {
-    case CompareOp::kNever: return false;
-    case CompareOp::kLess: return incoming < stored;
-    case CompareOp::kEqual: return incoming == stored;
-    case CompareOp::kLessEqual: return incoming <= stored;
-    case CompareOp::kGreater: return incoming > stored;
-    case CompareOp::kNotEqual: return incoming != stored;
-    case CompareOp::kGreaterEqual: return incoming >= stored;
-    case CompareOp::kAlways: return true;
+    case CompareOp::kNever:
+      return false;
+    case CompareOp::kLess:
+      return incoming < stored;
+    case CompareOp::kEqual:
+      return incoming == stored;
+    case CompareOp::kLessEqual:
+      return incoming <= stored;
+    case CompareOp::kGreater:
+      return incoming > stored;
+    case CompareOp::kNotEqual:
+      return incoming != stored;
+    case CompareOp::kGreaterEqual:
+      return incoming >= stored;
+    case CompareOp::kAlways:
+      return true;
   }
   return false;
 }
@@ -92,12 +102,14 @@ bool interpolate_color(const std::array<WindowVertex, 3>& v, int64_t area, int64
     const double q[3] = {b[0] * v[0].inv_w, b[1] * v[1].inv_w, b[2] * v[2].inv_w};
     const double sum = q[0] + q[1] + q[2];
     if (!(sum > 0.0)) return false;
-    for (int i = 0; i < 3; ++i) weight[i] = q[i] / sum;
+    for (int i = 0; i < 3; ++i)
+      weight[i] = q[i] / sum;
   }
   out = {0.0f, 0.0f, 0.0f, 1.0f};
   for (uint32_t c = 0; c < std::min(attribute_count, 4u); ++c) {
     double a = 0.0;
-    for (int i = 0; i < 3; ++i) a += weight[i] * v[i].clip->attributes[c];
+    for (int i = 0; i < 3; ++i)
+      a += weight[i] * v[i].clip->attributes[c];
     out[c] = static_cast<float>(a);
   }
   return true;
@@ -105,9 +117,11 @@ bool interpolate_color(const std::array<WindowVertex, 3>& v, int64_t area, int64
 
 void write_color(detail::FramebufferStorage& fb, size_t index, const std::array<float, 4>& color) {
   if (fb.desc.color_format == ColorFormat::kRGBA8) {
-    for (int c = 0; c < 4; ++c) fb.rgba8[index * 4 + c] = to_unorm8(color[c]);
+    for (int c = 0; c < 4; ++c)
+      fb.rgba8[index * 4 + c] = to_unorm8(color[c]);
   } else {
-    for (int c = 0; c < 4; ++c) fb.rgba32f[index * 4 + c] = color[c];
+    for (int c = 0; c < 4; ++c)
+      fb.rgba32f[index * 4 + c] = color[c];
   }
 }
 
@@ -122,7 +136,8 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
   // Window y points down, so a triangle counter-clockwise in NDC (y up) has negative area here.
   const bool counter_clockwise = area < 0;
   const bool front = counter_clockwise == (pipeline.front_face == FrontFace::kCounterClockwise);
-  if ((pipeline.cull == CullMode::kBack && !front) || (pipeline.cull == CullMode::kFront && front)) {
+  if ((pipeline.cull == CullMode::kBack && !front) ||
+      (pipeline.cull == CullMode::kFront && front)) {
     ++counters.triangles_culled;
     return;
   }
@@ -144,8 +159,10 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
   auto pixel_of = [bits](int64_t fixed) { return fixed >> bits; };  // floor division
   const int64_t x0 = std::max<int64_t>(0, pixel_of(std::min({v[0].x, v[1].x, v[2].x})) - 1);
   const int64_t y0 = std::max<int64_t>(0, pixel_of(std::min({v[0].y, v[1].y, v[2].y})) - 1);
-  const int64_t x1 = std::min<int64_t>(fb.desc.width - 1, pixel_of(std::max({v[0].x, v[1].x, v[2].x})) + 1);
-  const int64_t y1 = std::min<int64_t>(fb.desc.height - 1, pixel_of(std::max({v[0].y, v[1].y, v[2].y})) + 1);
+  const int64_t x1 =
+      std::min<int64_t>(fb.desc.width - 1, pixel_of(std::max({v[0].x, v[1].x, v[2].x})) + 1);
+  const int64_t y1 =
+      std::min<int64_t>(fb.desc.height - 1, pixel_of(std::max({v[0].y, v[1].y, v[2].y})) + 1);
 
   for (int64_t py = y0; py <= y1; ++py) {
     for (int64_t px = x0; px <= x1; ++px) {
@@ -168,9 +185,11 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
         // (each edge function over the area is the weight of the opposite vertex).
         const double a = static_cast<double>(area);
         const double z = (static_cast<double>(e0) * v[0].z + static_cast<double>(e1) * v[1].z +
-                          static_cast<double>(e2) * v[2].z) / a;
+                          static_cast<double>(e2) * v[2].z) /
+                         a;
         const float depth = static_cast<float>(std::clamp(z, 0.0, 1.0));
-        const size_t index = fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s);
+        const size_t index =
+            fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s);
         if (pipeline.depth_test) {
           if (!depth_test_passes(pipeline.depth_compare, depth, fb.depth[index])) continue;
           if (pipeline.depth_write) fb.depth[index] = depth;
@@ -265,8 +284,8 @@ void draw(detail::FramebufferStorage& fb, const PipelineState& pipeline, const D
     }
     std::array<WindowVertex, kMaxClipVertices> window;
     for (int i = 0; i < polygon.count; ++i) {
-      window[i] = to_window(polygon.vertices[i], fb.desc.width, fb.desc.height,
-                            pipeline.subpixel_bits);
+      window[i] =
+          to_window(polygon.vertices[i], fb.desc.width, fb.desc.height, pipeline.subpixel_bits);
     }
     // The clipped polygon is convex: draw it as a fan. The fan's inner edges are shared by
     // two pieces, and the fill rule gives each of their samples to exactly one piece.
