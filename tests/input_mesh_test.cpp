@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include "tessera/tessera.hpp"
+#include "tests/file_error.hpp"
 #include "tests/temp_dir.hpp"
 
 namespace tessera {
@@ -38,18 +39,7 @@ constexpr const char* kQuadObj =
 void expect_load_error(const std::filesystem::path& path, ErrorCode code,
                        std::initializer_list<std::string> parts) {
   const std::string bytes_before = read_file(path);
-  try {
-    load_mesh(path);
-    ADD_FAILURE() << "expected tessera::Error for " << path;
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(e.code(), code) << message;
-    EXPECT_NE(message.find(path.filename().string()), std::string::npos) << message;
-    for (const std::string& part : parts) {
-      EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
-    }
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  }
+  test::expect_file_error([](const std::filesystem::path& p) { load_mesh(p); }, path, code, parts);
   EXPECT_EQ(read_file(path), bytes_before);
 }
 
