@@ -2,7 +2,6 @@
 // it: it renders the demo scene, captures and meshes to images and reports its speed; bad
 // arguments and bad files end it with a non-zero exit, one line on stderr that names the
 // argument or file, and no image.
-// (The one test file that reads images, so the one that includes OpenImageIO.)
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -16,8 +15,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <OpenImageIO/imageio.h>
 
 #include "tessera/tessera.hpp"
 #include "tests/temp_dir.hpp"
@@ -58,31 +55,14 @@ RunResult run_render(const TempDir& dir, const std::string& args) {
   return r;
 }
 
-struct Image {
-  int width = 0;
-  int height = 0;
-  int channels = 0;
-  std::vector<float> pixels;  // top row first, `channels` per pixel, 0..1 for 8-bit files
-
-  const float* at(int x, int y) const { return &pixels[(size_t(y) * width + x) * channels]; }
-};
-
+// The image at `path`, or an empty one and a test failure when it cannot be read.
 Image read_image(const std::filesystem::path& path) {
-  Image image;
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) {
-    ADD_FAILURE() << "cannot read " << path << ": " << OIIO::geterror();
-    return image;
+  try {
+    return tessera::read_image(path);
+  } catch (const Error& e) {
+    ADD_FAILURE() << e.what();
+    return {};
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channels = spec.nchannels;
-  image.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
-  EXPECT_TRUE(in->read_image(/*subimage=*/0, /*miplevel=*/0, /*chbegin=*/0, spec.nchannels,
-                             OIIO::TypeDesc::FLOAT, image.pixels.data()))
-      << in->geterror();
-  return image;
 }
 
 // The lines of `text` that start with `prefix`.

@@ -1,9 +1,11 @@
-// Writing images (PNG, EXR, and whatever else OpenImageIO knows by the file extension).
+// Writing and reading images (PNG, EXR, and whatever else OpenImageIO knows by the file
+// extension).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <vector>
 
 namespace tessera {
 
@@ -13,5 +15,20 @@ void write_image(const std::filesystem::path& path, uint32_t width, uint32_t hei
                  uint32_t channels, std::span<const uint8_t> pixels);
 void write_image(const std::filesystem::path& path, uint32_t width, uint32_t height,
                  uint32_t channels, std::span<const float> pixels);
+
+// An image read back from a file: float values, 8-bit files scaled to 0..1, top row first.
+struct Image {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  uint32_t channels = 0;
+  std::vector<float> pixels;  // channels values per pixel
+
+  const float* at(uint32_t x, uint32_t y) const {
+    return &pixels[(static_cast<size_t>(y) * width + x) * channels];
+  }
+};
+
+// Throws Error(kIo) naming the file when it cannot be opened or decoded.
+Image read_image(const std::filesystem::path& path);
 
 }  // namespace tessera
