@@ -5,6 +5,9 @@
 // file's HWY_TARGETS.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+
 #include <hwy/highway.h>
 
 #if HWY_TARGETS & HWY_AVX3_DL
@@ -68,11 +71,39 @@
 #define TESSERA_SIMD_TARGET_SCALAR(ENTRY)
 #endif
 
-#define TESSERA_FOR_EACH_SIMD_TARGET(ENTRY)                                                        \
-  TESSERA_SIMD_TARGET_AVX3_DL(ENTRY)                                                               \
-  TESSERA_SIMD_TARGET_AVX3(ENTRY)                                                                  \
-  TESSERA_SIMD_TARGET_AVX2(ENTRY) TESSERA_SIMD_TARGET_SSE4(ENTRY) TESSERA_SIMD_TARGET_SSSE3(ENTRY) \
-      TESSERA_SIMD_TARGET_SVE2_128(ENTRY) TESSERA_SIMD_TARGET_SVE_256(ENTRY)                       \
-          TESSERA_SIMD_TARGET_SVE2(ENTRY) TESSERA_SIMD_TARGET_SVE(ENTRY)                           \
-              TESSERA_SIMD_TARGET_NEON(ENTRY) TESSERA_SIMD_TARGET_EMU128(ENTRY)                    \
-                  TESSERA_SIMD_TARGET_SCALAR(ENTRY)
+// clang-format off
+#define TESSERA_FOR_EACH_SIMD_TARGET(ENTRY) \
+  TESSERA_SIMD_TARGET_AVX3_DL(ENTRY)       \
+  TESSERA_SIMD_TARGET_AVX3(ENTRY)          \
+  TESSERA_SIMD_TARGET_AVX2(ENTRY)          \
+  TESSERA_SIMD_TARGET_SSE4(ENTRY)          \
+  TESSERA_SIMD_TARGET_SSSE3(ENTRY)         \
+  TESSERA_SIMD_TARGET_SVE2_128(ENTRY)      \
+  TESSERA_SIMD_TARGET_SVE_256(ENTRY)       \
+  TESSERA_SIMD_TARGET_SVE2(ENTRY)          \
+  TESSERA_SIMD_TARGET_SVE(ENTRY)           \
+  TESSERA_SIMD_TARGET_NEON(ENTRY)          \
+  TESSERA_SIMD_TARGET_EMU128(ENTRY)        \
+  TESSERA_SIMD_TARGET_SCALAR(ENTRY)
+// clang-format on
+
+// Looks up a per-target instance in a table built with TESSERA_FOR_EACH_SIMD_TARGET; a target
+// the table lacks (another architecture's extension) gets the last entry, the portable
+// baseline every build compiles.
+namespace tessera::simd {
+
+template <typename Fn>
+struct TargetEntry {
+  int64_t bit;
+  Fn fn;
+};
+
+template <typename Fn, size_t N>
+Fn find_target(const TargetEntry<Fn> (&table)[N], int64_t bit) {
+  for (const TargetEntry<Fn>& entry : table) {
+    if (entry.bit == bit) return entry.fn;
+  }
+  return table[N - 1].fn;
+}
+
+}  // namespace tessera::simd

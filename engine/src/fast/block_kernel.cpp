@@ -488,29 +488,20 @@ const KernelTable* GetKernelTable() {
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include <iterator>
-
 #include "simd/target_list.hpp"
 
 namespace tessera::fast {
 
 namespace {
-struct TargetEntry {
-  int64_t bit;
-  const KernelTable* (*table)();
-};
-#define TESSERA_TARGET_ENTRY(bit, ns) {bit, &ns::GetKernelTable},
-constexpr TargetEntry kTargets[] = {TESSERA_FOR_EACH_SIMD_TARGET(TESSERA_TARGET_ENTRY)};
+using TableFn = const KernelTable* (*)();
+#define TESSERA_TARGET_ENTRY(bit, ns) simd::TargetEntry<TableFn>{bit, &ns::GetKernelTable},
+constexpr simd::TargetEntry<TableFn> kTargets[] = {
+    TESSERA_FOR_EACH_SIMD_TARGET(TESSERA_TARGET_ENTRY)};
 #undef TESSERA_TARGET_ENTRY
 }  // namespace
 
 const KernelTable& kernel_table(int64_t target) {
-  for (const TargetEntry& entry : kTargets) {
-    if (entry.bit == target) return *entry.table();
-  }
-  // A target this file was not compiled for (another architecture's extension): the last
-  // entry, the portable baseline, which every build has.
-  return *kTargets[std::size(kTargets) - 1].table();
+  return *simd::find_target(kTargets, target)();
 }
 
 }  // namespace tessera::fast

@@ -287,26 +287,19 @@ void SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-#include <iterator>
 #include "simd/target_list.hpp"
 
 namespace tessera::fast {
 
 namespace {
-struct TargetEntry {
-  int64_t bit;
-  SetupRangeFn fn;
-};
-#define TESSERA_TARGET_ENTRY(bit, ns) {bit, &ns::SetupRange},
-constexpr TargetEntry kTargets[] = {TESSERA_FOR_EACH_SIMD_TARGET(TESSERA_TARGET_ENTRY)};
+#define TESSERA_TARGET_ENTRY(bit, ns) simd::TargetEntry<SetupRangeFn>{bit, &ns::SetupRange},
+constexpr simd::TargetEntry<SetupRangeFn> kTargets[] = {
+    TESSERA_FOR_EACH_SIMD_TARGET(TESSERA_TARGET_ENTRY)};
 #undef TESSERA_TARGET_ENTRY
 }  // namespace
 
 SetupRangeFn setup_kernel(int64_t target) {
-  for (const TargetEntry& entry : kTargets) {
-    if (entry.bit == target) return entry.fn;
-  }
-  return kTargets[std::size(kTargets) - 1].fn;  // the portable instance, always compiled
+  return simd::find_target(kTargets, target);
 }
 
 }  // namespace tessera::fast
