@@ -113,15 +113,6 @@ PlaneSet clip_planes(GuardBand guard_band) {
 
 }  // namespace
 
-bool needs_clipping(const std::array<ClipVertex, 3>& in, GuardBand guard_band) {
-  for (const Plane& plane : clip_planes(guard_band)) {
-    for (const ClipVertex& v : in) {
-      if (!(plane.distance(v) >= 0.0)) return true;
-    }
-  }
-  return false;
-}
-
 ClipResult clip_triangle(const std::array<ClipVertex, 3>& in, uint32_t attribute_count,
                          GuardBand guard_band, ClipPolygon& out) {
   const PlaneSet planes = clip_planes(guard_band);

@@ -49,10 +49,6 @@ struct GuardBand {
   }
 };
 
-// Whether any vertex lies outside a clip plane, i.e. whether clip_triangle would change the
-// triangle. Evaluates exactly the distances clip_triangle does, so the two always agree.
-bool needs_clipping(const std::array<ClipVertex, 3>& in, GuardBand guard_band);
-
 // Clips triangle `in` (3 vertices) into `out` (a convex polygon, same winding, to be drawn
 // as the fan out[0], out[i], out[i+1]). Only the first `attribute_count` attributes are
 // interpolated. An intersection is always computed from the inside vertex towards the outside

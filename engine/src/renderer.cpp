@@ -42,12 +42,12 @@ struct Renderer::Impl {
   explicit Impl(const RendererOptions& o)
       : options(checked(o)),
         arena(o.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(o.threads)),
-        target_name(simd::target_name(simd::resolve_target(o.simd))),
-        fast(simd::resolve_target(o.simd), o.bin_memory_budget) {}
+        fast(simd::resolve_target(o.simd), o.bin_memory_budget),
+        target_name(simd::target_name(fast.simd_target())) {}
   RendererOptions options;
   tbb::task_arena arena;
-  std::string target_name;
   fast::FastRasterizer fast;
+  std::string target_name;
   Counters counters;
 };
 

@@ -23,6 +23,7 @@
 #include <hwy/highway.h>
 
 #include "binning/tile_grid.hpp"
+#include "engine/src/framebuffer_storage.hpp"
 
 HWY_BEFORE_NAMESPACE();
 namespace tessera::fast::HWY_NAMESPACE {
@@ -31,7 +32,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 namespace {
 
 constexpr size_t kSamplePlane = binning::kTilePixels;  // values between two samples' planes
-constexpr size_t kBlocksPerTileSide = binning::kTileSize / 8;
+using detail::kBlocksPerTileSide;
 
 // Pixel coordinates of the 64 lanes of a block, row-major.
 struct PixelTables {

@@ -11,7 +11,8 @@
 namespace tessera::fast {
 
 // Sets up triangles [begin, end) of a validated draw, in order, appending their setups exactly
-// as setup_triangle would (same bits).
+// as triangle_setup.cpp's scalar setup of the snapped vertices does (same bits); triangles
+// a clip plane cuts go through setup_triangle.
 using SetupRangeFn = void (*)(const SetupContext& context, const DrawInput& input, size_t begin,
                               size_t end, std::vector<TriangleSetup>& out, Counters& counters);
 

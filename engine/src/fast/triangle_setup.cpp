@@ -149,42 +149,20 @@ void setup_triangle(const SetupContext& ctx, const std::array<const Float4*, 3>&
                     Counters& counters) {
   ++counters.triangles_submitted;
   const bool gl_depth = ctx.pipeline->clip_depth == ClipDepth::kNegativeOneToOne;
-  double x[3], y[3], z[3], w[3];
-  bool inside = true;
-  for (int k = 0; k < 3; ++k) {
-    const Float4& p = *positions[k];
-    x[k] = p.x;
-    y[k] = p.y;
-    w[k] = p.w;
-    // OpenGL's -w <= z <= w becomes 0 <= z <= w: z' = (z + w) / 2, linear, so clipping and
-    // interpolation commute with it.
-    z[k] = gl_depth ? 0.5 * (double{p.z} + p.w) : p.z;
-    // The distances clip.cpp computes, term for term (its zero terms add nothing).
-    const double gx = ctx.guard_band.x * w[k], gy = ctx.guard_band.y * w[k];
-    inside = inside && z[k] >= 0.0 && -z[k] + w[k] >= 0.0 && w[k] + -kMinClipW >= 0.0 &&
-             x[k] + gx >= 0.0 && -x[k] + gx >= 0.0 && y[k] + gy >= 0.0 && -y[k] + gy >= 0.0;
-  }
   const uint32_t count = ctx.attribute_count;
-  if (inside) {
-    std::array<Snapped, 3> s;
-    for (int k = 0; k < 3; ++k) {
-      s[k] = snap(x[k], y[k], z[k], w[k], ctx);
-      s[k].color = count ? color_of(attributes[k], count) : color_of(nullptr, 0);
-    }
-    setup_snapped(ctx, s, out, counters);
-    return;
-  }
-
-  // The general path: clip, then fan. Clipping interpolates attributes linearly in clip space,
-  // right for perspective-correct ones; affine ones are linear in screen space, so they are
-  // clipped as a * w and divided by the new w (as the reference does; OpenGL 4.6 section 13.7).
+  // Clipping interpolates attributes linearly in clip space, right for perspective-correct
+  // ones; affine ones are linear in screen space, so they are clipped as a * w and divided by
+  // the new w (as the reference does; OpenGL 4.6 section 13.7).
   const bool affine = ctx.pipeline->interpolation == Interpolation::kAffine;
   std::array<ClipVertex, 3> tri;
   for (int k = 0; k < 3; ++k) {
-    tri[k].x = x[k];
-    tri[k].y = y[k];
-    tri[k].z = z[k];
-    tri[k].w = w[k];
+    const Float4& p = *positions[k];
+    tri[k].x = p.x;
+    tri[k].y = p.y;
+    tri[k].w = p.w;
+    // OpenGL's -w <= z <= w becomes 0 <= z <= w: z' = (z + w) / 2, linear, so clipping and
+    // interpolation commute with it.
+    tri[k].z = gl_depth ? 0.5 * (double{p.z} + p.w) : p.z;
     const std::array<double, 4> c = count ? color_of(attributes[k], count) : color_of(nullptr, 0);
     for (int i = 0; i < 4; ++i)
       tri[k].attributes[i] = affine ? c[i] * tri[k].w : c[i];

@@ -52,9 +52,11 @@ struct SetupContext {
   GuardBand guard_band;
 };
 
-// Sets up one input triangle: clip-space positions as given to the draw (the pipeline's depth
-// convention) and each vertex's attributes (attribute_count floats; null when there are none).
-// Appends one setup per piece that survives clipping and culling.
+// Sets up one input triangle through the clipper shared with the reference: clip-space
+// positions as given to the draw (the pipeline's depth convention) and each vertex's
+// attributes (attribute_count floats; null when there are none). Appends one setup per piece
+// that survives clipping and culling. The vectorized setup (setup_kernel.hpp) sends here the
+// triangles a clip plane cuts.
 void setup_triangle(const SetupContext& context, const std::array<const Float4*, 3>& positions,
                     const std::array<const float*, 3>& attributes, std::vector<TriangleSetup>& out,
                     Counters& counters);
