@@ -15,7 +15,9 @@ namespace tessera {
 
 namespace {
 
-[[noreturn]] void fail(ErrorCode code, const std::string& message) { throw Error(code, message); }
+[[noreturn]] void fail(ErrorCode code, const std::string& message) {
+  throw Error(code, message);
+}
 
 template <typename E>
 void check_enum(E value, E last, const char* name) {
@@ -60,9 +62,9 @@ void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
   check_enum(pipeline.clip_depth, ClipDepth::kNegativeOneToOne, "clip_depth");
   check_enum(pipeline.interpolation, Interpolation::kAffine, "interpolation");
   if (pipeline.samples != 0 && pipeline.samples != target.samples()) {
-    fail(ErrorCode::kInvalidArgument,
-         "pipeline sample count " + std::to_string(pipeline.samples) +
-             " does not match the framebuffer's " + std::to_string(target.samples()));
+    fail(ErrorCode::kInvalidArgument, "pipeline sample count " + std::to_string(pipeline.samples) +
+                                          " does not match the framebuffer's " +
+                                          std::to_string(target.samples()));
   }
   if (pipeline.subpixel_bits < kMinSubpixelBits || pipeline.subpixel_bits > kMaxSubpixelBits) {
     fail(ErrorCode::kInvalidArgument,
@@ -84,8 +86,9 @@ void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
   }
   if (input.indices.empty()) {
     if (vertices % 3 != 0) {
-      fail(ErrorCode::kInvalidInput, "a non-indexed triangle list needs a multiple of 3 positions, got " +
-                                         std::to_string(vertices));
+      fail(ErrorCode::kInvalidInput,
+           "a non-indexed triangle list needs a multiple of 3 positions, got " +
+               std::to_string(vertices));
     }
   } else {
     if (input.indices.size() % 3 != 0) {
@@ -98,9 +101,9 @@ void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
       largest = std::max(largest, index);
     for (size_t i = 0; largest >= vertices && i < input.indices.size(); ++i) {
       if (input.indices[i] >= vertices) {
-        fail(ErrorCode::kInvalidInput, "index " + std::to_string(input.indices[i]) + " at position " +
-                                           std::to_string(i) + " is out of range: there are " +
-                                           std::to_string(vertices) + " vertices");
+        fail(ErrorCode::kInvalidInput,
+             "index " + std::to_string(input.indices[i]) + " at position " + std::to_string(i) +
+                 " is out of range: there are " + std::to_string(vertices) + " vertices");
       }
     }
   }
