@@ -7,35 +7,15 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <new>
 #include <vector>
 
 #include "binning/tile_grid.hpp"
+#include "engine/src/aligned_allocator.hpp"
 #include "tessera/framebuffer.hpp"
 
 namespace tessera {
 
 namespace detail {
-
-// Storage aligned to 64 bytes, so that a block's 64 values of one sample (256 bytes of depth)
-// start on a cache line and SIMD kernels can use aligned loads and stores on every target.
-template <typename T>
-struct CacheAlignedAllocator {
-  using value_type = T;
-  static constexpr std::align_val_t kAlignment{64};
-  CacheAlignedAllocator() = default;
-  template <typename U>
-  CacheAlignedAllocator(const CacheAlignedAllocator<U>&) noexcept {}
-  T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
-  void deallocate(T* p, size_t) noexcept { ::operator delete(p, kAlignment); }
-  template <typename U>
-  bool operator==(const CacheAlignedAllocator<U>&) const noexcept {
-    return true;
-  }
-};
-
-template <typename T>
-using AlignedVector = std::vector<T, CacheAlignedAllocator<T>>;
 
 // Blocks of 8x8 pixels: the unit of hierarchical rejection, Hi-Z and SIMD work.
 inline constexpr uint32_t kBlockSizeLog2 = 3;

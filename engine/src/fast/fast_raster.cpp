@@ -28,7 +28,7 @@ namespace {
 constexpr size_t kMinChunkTriangles = 4096;
 
 struct Chunk {
-  std::vector<TriangleSetup> setups;
+  SetupList setups;
   binning::Bins bins;
   Counters counters;
   size_t begin = 0, end = 0;  // triangles of the draw given to this chunk
