@@ -31,6 +31,7 @@ struct Options {
   uint32_t subpixel_bits = 8;
   double bin_budget_mib = 0;
   bool stats = false;
+  bool no_counters = false;
   std::vector<float> eye, target, up;
   float fov = 40.0f;
   bool ortho = false;
@@ -167,6 +168,7 @@ int run(const Options& o, const CLI::App& app) {
        float_color ? tessera::ColorFormat::kRGBA32F : tessera::ColorFormat::kRGBA8});
   tessera::RendererOptions renderer_options;
   renderer_options.threads = o.threads;
+  renderer_options.raster_counters = !o.no_counters;
   if (o.bin_budget_mib > 0) {
     renderer_options.bin_memory_budget = static_cast<uint64_t>(o.bin_budget_mib * 1048576.0);
   }
@@ -285,7 +287,10 @@ int main(int argc, char** argv) {
   app.add_option("--bin-budget", o.bin_budget_mib,
                  "fast engine: MiB of binned triangles per rasterization pass")
       ->check(CLI::Range(0.0625, 65536.0));
-  app.add_flag("--stats", o.stats, "print every renderer counter, per frame");
+  CLI::Option* stats = app.add_flag("--stats", o.stats, "print every renderer counter, per frame");
+  app.add_flag("--no-counters", o.no_counters,
+               "fast engine: do not count blocks, samples and pixels (kernels without counting)")
+      ->excludes(stats);
   app.add_flag("--no-depth", o.no_depth, "no depth test: later triangles overwrite earlier ones");
   app.add_option("--cull", o.cull, "face culling")
       ->check(CLI::IsMember({"back", "front", "none"}))

@@ -78,8 +78,9 @@ struct Result {
 };
 
 Result render(const Scene& scene, Backend backend, const Config& config = {SimdTarget::kAuto, 1},
-              uint64_t budget = kDefaultBinMemoryBudget) {
+              uint64_t budget = kDefaultBinMemoryBudget, bool raster_counters = true) {
   RendererOptions options;
+  options.raster_counters = raster_counters;
   options.backend = backend;
   options.threads = config.threads;
   options.simd = config.target;
@@ -417,6 +418,27 @@ TEST(FastEngine, SmallBinBudgetRendersInPassesWithTheSameImage) {
     EXPECT_EQ(passes.rgba8, whole.rgba8);
     EXPECT_EQ(0, std::memcmp(passes.depth.data(), whole.depth.data(), whole.depth.size() * 4));
     EXPECT_EQ(passes.counters.samples_passed, whole.counters.samples_passed);
+  });
+}
+
+TEST(FastEngine, RasterCountersOffDrawTheSameImageAndCountNoRasterWork) {
+  Scene s = soup(710, 5000, 60.0f, false, true);
+  s.samples = 4;
+  for_each_config([&](const Config& config) {
+    const Result counted = render(s, Backend::kFast, config);
+    const Result quiet = render(s, Backend::kFast, config, kDefaultBinMemoryBudget, false);
+    EXPECT_GT(counted.counters.blocks_partial, 0u);
+    EXPECT_GT(counted.counters.samples_covered, 0u);
+    EXPECT_GT(counted.counters.pixels_shaded, 0u);
+    EXPECT_EQ(quiet.rgba8, counted.rgba8);
+    EXPECT_EQ(0, std::memcmp(quiet.depth.data(), counted.depth.data(), counted.depth.size() * 4));
+    const Counters& c = quiet.counters;
+    EXPECT_EQ(c.blocks_rejected + c.blocks_accepted + c.blocks_partial, 0u);
+    EXPECT_EQ(c.hiz_rejected + c.hiz_accepted, 0u);
+    EXPECT_EQ(c.samples_covered + c.samples_passed + c.pixels_shaded, 0u);
+    // The triangle and bin counts are kept either way.
+    EXPECT_EQ(c.triangles_rasterized, counted.counters.triangles_rasterized);
+    EXPECT_EQ(c.bin_references, counted.counters.bin_references);
   });
 }
 

@@ -30,6 +30,11 @@ struct RendererOptions {
   Backend backend = Backend::kFast;
   SimdTarget simd = SimdTarget::kAuto;
   uint64_t bin_memory_budget = kDefaultBinMemoryBudget;  // bytes, at least 64 KiB
+  // Count the fast engine's raster work: blocks rejected, accepted and partial, Hi-Z
+  // decisions, samples covered and passed, pixels shaded. Off, those counters stay 0 and the
+  // raster kernels contain no counting code (a separate kernel instance); the triangle and
+  // bin counts are kept either way (a few additions per triangle).
+  bool raster_counters = true;
 };
 
 // One draw call's vertex data, all in caller-owned memory that the renderer only reads.

@@ -190,7 +190,7 @@ struct TriangleState {
 // coverage bits, then the early depth test, shading once per pixel and the writes. Plane bases
 // are computed at the first lane group with coverage, so blocks the triangle misses cost only
 // their edge tests.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, class VI>
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
 HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
                              VI lane_e0, VI lane_e1, VI lane_e2, int32_t bx, int32_t by,
                              const int32_t* e_block, uint32_t edge_mask, bool wide,
@@ -264,7 +264,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       }
       if (hn::AllFalse(di, cov)) continue;
       if (!have_bases) compute_bases();
-      st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
+      if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
       auto pass = hn::RebindMask(df, cov);
       if constexpr (kDepth != DepthMode::kOff) {
         auto z = plane_at(df, fx, fy, z_base + st.z_offset[s], t.z_dx, t.z_dy);
@@ -281,7 +281,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
           }
         }
       }
-      st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
+      if constexpr (kCount) st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
       pass_bits =
           hn::Or(pass_bits, hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
     }
@@ -289,7 +289,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
     if constexpr (kColor != ColorMode::kOff) {
       const auto any = hn::Ne(pass_bits, hn::Zero(du));
       if (hn::AllFalse(du, any)) continue;
-      st.shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
+      if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
       auto r = plane_at(df, fx, fy, qa_base[0], t.qa_dx[0], t.qa_dy[0]);
       auto g = plane_at(df, fx, fy, qa_base[1], t.qa_dx[1], t.qa_dy[1]);
       auto b = plane_at(df, fx, fy, qa_base[2], t.qa_dx[2], t.qa_dy[2]);
@@ -361,7 +361,9 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
   }
 }
 
-template <DepthMode kDepth, ColorMode kColor, bool kMulti>
+// One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
+// counters in; without it the kernel carries no counting code at all.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
 void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
   const hn::ScalableTag<int32_t> di;
   const uint32_t bits = tc.subpixel_bits;
@@ -427,15 +429,17 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
         if (outside) {
           ++rejected;
         } else {
-          raster_block<kDepth, kColor, kMulti>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by,
-                                               e_block, 7, false, kTestDepth);
+          raster_block<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by,
+                                                       e_block, 7, false, kTestDepth);
         }
         for (int e = 0; e < 3; ++e)
           e_block[e] += st.step_x[e] * 8;
       }
     }
-    counters.blocks_rejected += rejected;
-    counters.blocks_partial += visited - rejected;
+    if constexpr (kCount) {
+      counters.blocks_rejected += rejected;
+      counters.blocks_partial += visited - rejected;
+    }
   } else {
     // Block classification, stepped from block to block. A block's sample area spans
     // [x_lo, x_lo + span] in fixed point (pixel x holds samples from x + 0/16 to x + 15/16),
@@ -474,13 +478,15 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
           edge_mask |= block_corner[e] + min_offset[e] < 0 ? 1u << e : 0u;
         }
         if (rejected) {
-          ++counters.blocks_rejected;
+          if constexpr (kCount) ++counters.blocks_rejected;
           continue;
         }
-        if (edge_mask == 0) {
-          ++counters.blocks_accepted;
-        } else {
-          ++counters.blocks_partial;
+        if constexpr (kCount) {
+          if (edge_mask == 0) {
+            ++counters.blocks_accepted;
+          } else {
+            ++counters.blocks_partial;
+          }
         }
 
         bool test_depth = kTestDepth;
@@ -499,11 +505,11 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
           const HizVerdict verdict =
               hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]);
           if (verdict == HizVerdict::kReject) {
-            ++counters.hiz_rejected;
+            if constexpr (kCount) ++counters.hiz_rejected;
             continue;
           }
           if (verdict == HizVerdict::kAccept && edge_mask == 0 && !clipped_block) {
-            ++counters.hiz_accepted;
+            if constexpr (kCount) ++counters.hiz_accepted;
             test_depth = false;  // every sample passes: write without reading
           }
         }
@@ -517,22 +523,30 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
                                               (int64_t{t.a[e]} + t.b[e]) * corner_to_centre);
           }
         }
-        raster_block<kDepth, kColor, kMulti>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block,
-                                             edge_mask, wide, test_depth);
+        raster_block<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by,
+                                                     e_block, edge_mask, wide, test_depth);
       }
     }
   }
-  counters.samples_covered += st.covered;
-  counters.samples_passed += st.passed;
-  counters.pixels_shaded += st.shaded;
+  if constexpr (kCount) {
+    counters.samples_covered += st.covered;
+    counters.samples_passed += st.passed;
+    counters.pixels_shaded += st.shaded;
+  }
+}
+
+template <DepthMode kDepth, ColorMode kColor, bool kMulti>
+void fill_count(KernelTable& t) {
+  t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][kMulti][0] =
+      &RasterTriangle<kDepth, kColor, kMulti, false>;
+  t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][kMulti][1] =
+      &RasterTriangle<kDepth, kColor, kMulti, true>;
 }
 
 template <DepthMode kDepth, ColorMode kColor>
 void fill_multi(KernelTable& t) {
-  t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][0] =
-      &RasterTriangle<kDepth, kColor, false>;
-  t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][1] =
-      &RasterTriangle<kDepth, kColor, true>;
+  fill_count<kDepth, kColor, false>(t);
+  fill_count<kDepth, kColor, true>(t);
 }
 
 template <DepthMode kDepth>

@@ -56,15 +56,17 @@ struct TileContext {
 using TriangleKernel = void (*)(const TileContext&, const TriangleSetup&, Counters&);
 
 struct KernelTable {
-  TriangleKernel kernels[kDepthModes][kColorModes][2];  // [depth][colour][multisample]
+  // [depth][colour][multisample][counting]
+  TriangleKernel kernels[kDepthModes][kColorModes][2][2];
 };
 
 // The kernels compiled for a Highway target bit (see simd/dispatch.hpp).
 const KernelTable& kernel_table(int64_t target);
 
 inline TriangleKernel triangle_kernel(const KernelTable& table, DepthMode depth, ColorMode color,
-                                      bool multisample) {
-  return table.kernels[static_cast<int>(depth)][static_cast<int>(color)][multisample ? 1 : 0];
+                                      bool multisample, bool count) {
+  return table.kernels[static_cast<int>(depth)][static_cast<int>(color)][multisample ? 1 : 0]
+                      [count ? 1 : 0];
 }
 
 }  // namespace tessera::fast

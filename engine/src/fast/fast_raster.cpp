@@ -48,16 +48,19 @@ void invalidate_hiz(detail::FramebufferStorage& fb) {
 struct FastRasterizer::State {
   int64_t target = 0;
   uint64_t budget = 0;
+  bool count = true;  // raster counters
   const KernelTable* kernels = nullptr;
   SetupRangeFn setup = nullptr;
   std::vector<Chunk> chunks;
   std::vector<Counters> tile_counters;
 };
 
-FastRasterizer::FastRasterizer(int64_t simd_target, uint64_t bin_memory_budget)
+FastRasterizer::FastRasterizer(int64_t simd_target, uint64_t bin_memory_budget,
+                               bool raster_counters)
     : state_(std::make_unique<State>()) {
   state_->target = simd_target;
   state_->budget = bin_memory_budget;
+  state_->count = raster_counters;
   state_->kernels = &kernel_table(simd_target);
   state_->setup = setup_kernel(simd_target);
 }
@@ -98,7 +101,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   const ColorMode color = !pipeline.color_write                         ? ColorMode::kOff
                           : fb.desc.color_format == ColorFormat::kRGBA8 ? ColorMode::kRGBA8
                                                                         : ColorMode::kRGBA32F;
-  const TriangleKernel kernel = triangle_kernel(*st.kernels, depth, color, samples > 1);
+  const TriangleKernel kernel = triangle_kernel(*st.kernels, depth, color, samples > 1, st.count);
   const CompareOp op = pipeline.depth_compare;
   draw.hiz = pipeline.depth_test && (op == CompareOp::kLess || op == CompareOp::kLessEqual ||
                                      op == CompareOp::kGreater || op == CompareOp::kGreaterEqual);

@@ -15,7 +15,7 @@ namespace tessera::fast {
 
 class FastRasterizer {
  public:
-  FastRasterizer(int64_t simd_target, uint64_t bin_memory_budget);
+  FastRasterizer(int64_t simd_target, uint64_t bin_memory_budget, bool raster_counters);
   ~FastRasterizer();
   FastRasterizer(FastRasterizer&&) noexcept;
   FastRasterizer& operator=(FastRasterizer&&) noexcept;
