@@ -199,7 +199,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
   const hn::ScalableTag<uint32_t> du;
   const hn::ScalableTag<float> df;
   const size_t lanes = hn::Lanes(di);
-  const uint32_t samples = st.samples;
+  const uint32_t samples = kMulti ? st.samples : 1;  // a constant 1 unrolls the sample loop
 
   const size_t block =
       static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
