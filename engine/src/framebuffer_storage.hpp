@@ -5,6 +5,7 @@
 // (256 bytes of depth), which SIMD kernels load and store whole.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -32,12 +33,34 @@ constexpr uint32_t in_tile(uint32_t x, uint32_t y) {
          (tx & (kBlockSize - 1));
 }
 
+// Largest value of a fixed-point depth format (its steps are 1 / scale), or 0 for float depth.
+constexpr double depth_scale(DepthFormat format) {
+  switch (format) {
+    case DepthFormat::kUnorm16:
+      return 65535.0;
+    case DepthFormat::kUnorm24:
+      return 16777215.0;
+    case DepthFormat::kFloat32:
+      break;
+  }
+  return 0.0;
+}
+
+// Depth z in [0, 1] as the framebuffer stores it: the float itself, or the fixed-point step
+// round(z * scale) (ties to even), which a float holds exactly below 2^24.
+inline float encode_depth(double z, double scale) {
+  return scale > 0.0 ? static_cast<float>(std::nearbyint(z * scale)) : static_cast<float>(z);
+}
+inline float decode_depth(float stored, double scale) {
+  return scale > 0.0 ? static_cast<float>(stored / scale) : stored;
+}
+
 struct FramebufferStorage {
   FramebufferDesc desc;
   binning::TileGrid grid;
   AlignedVector<uint8_t> rgba8;  // 4 per sample, when desc.color_format == kRGBA8
   AlignedVector<float> rgba32f;  // 4 per sample, when desc.color_format == kRGBA32F
-  AlignedVector<float> depth;    // 1 per sample
+  AlignedVector<float> depth;    // 1 per sample, encoded (encode_depth)
   // Hi-Z: the nearest and farthest depth over all samples of each 8x8 block (index
   // tile * kBlocksPerTile + block in tile). Valid only while hiz_valid; a writer that does not
   // maintain them (the reference rasterizer) clears the flag.

@@ -35,6 +35,10 @@ struct RendererOptions {
   // raster kernels contain no counting code (a separate kernel instance); the triangle and
   // bin counts are kept either way (a few additions per triangle).
   bool raster_counters = true;
+  // Hi-Z: per 8x8 block depth bounds that reject a triangle's blocks hidden behind what is
+  // drawn and let fully covered blocks in front skip the depth reads. Off, every block is
+  // tested sample by sample (same image; docs/TRADEOFFS.md measures what it buys).
+  bool hiz = true;
 };
 
 // One draw call's vertex data, all in caller-owned memory that the renderer only reads.

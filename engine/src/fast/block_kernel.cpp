@@ -269,6 +269,8 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       if constexpr (kDepth != DepthMode::kOff) {
         auto z = plane_at(df, fx, fy, z_base + st.z_offset[s], t.z_dx, t.z_dy);
         z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
+        // Fixed-point formats: the step nearest z, ties to even (as encode_depth).
+        if (tc.depth_scale > 0.0f) z = hn::Round(hn::Mul(z, hn::Set(df, tc.depth_scale)));
         float* plane = depth + s * kSamplePlane + i;
         if (test_depth) {
           const auto stored = hn::Load(df, plane);
@@ -498,10 +500,14 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
           // The depth plane at the corner of the block's sample area.
           const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;
           const double z_corner = t.z0 + t.z_dx * (dx - 0.5) + t.z_dy * (dy - 0.5);
-          const float lo =
-              static_cast<float>(std::max<double>(z_corner + z_lo_offset, t.z_min - z_margin));
-          const float hi =
-              static_cast<float>(std::min<double>(z_corner + z_hi_offset, t.z_max + z_margin));
+          double lo_z = std::max<double>(z_corner + z_lo_offset, t.z_min - z_margin);
+          double hi_z = std::min<double>(z_corner + z_hi_offset, t.z_max + z_margin);
+          if (tc.depth_scale > 0.0f) {
+            // In fixed-point steps: a stored step round(z * scale) lies in these bounds.
+            lo_z = std::floor(lo_z * tc.depth_scale);
+            hi_z = std::ceil(hi_z * tc.depth_scale);
+          }
+          const float lo = static_cast<float>(lo_z), hi = static_cast<float>(hi_z);
           const HizVerdict verdict =
               hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]);
           if (verdict == HizVerdict::kReject) {

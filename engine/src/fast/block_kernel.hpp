@@ -40,6 +40,8 @@ struct TileContext {
   uint32_t subpixel_bits = 8;
   CompareOp compare = CompareOp::kLess;
   bool hiz = false;  // Hi-Z reject/accept (the compare op is one of <, <=, >, >=)
+  // Fixed-point depth formats store round(z * depth_scale); 0 for float depth.
+  float depth_scale = 0.0f;
   // Sample offsets from the pixel centre, in fixed point and in pixels.
   std::array<int32_t, 16> sample_x{}, sample_y{};
   std::array<float, 16> sample_fx{}, sample_fy{};
