@@ -41,6 +41,7 @@ struct Settings {
   bool reversed_z = false;
   tessera::Interpolation interpolation = tessera::Interpolation::kPerspective;
   bool hiz = true;
+  uint32_t bin_tile_size = 64;
 };
 
 struct KnobValue {
@@ -85,6 +86,11 @@ std::vector<KnobValue> knob_values() {
     Settings s;
     s.hiz = hiz;
     out.push_back({"hiz", hiz ? "on" : "off", s});
+  }
+  for (uint32_t size : {32u, 64u, 128u}) {
+    Settings s;
+    s.bin_tile_size = size;
+    out.push_back({"bin_tile_size", std::to_string(size), s});
   }
   return out;
 }
@@ -161,6 +167,7 @@ double time_frames(const Settings& s, const Workload& w, uint32_t threads, int f
   tessera::RendererOptions options;
   options.threads = threads;
   options.hiz = s.hiz;
+  options.bin_tile_size = s.bin_tile_size;
   options.raster_counters = false;
   tessera::Renderer renderer(options);
   tessera::Framebuffer fb = framebuffer_for(s, w.width, w.height);
@@ -190,6 +197,7 @@ Image render_colour(const tessera::Scene& scene, const Settings& s, uint32_t wid
   options.backend = backend;
   options.threads = 0;
   options.hiz = s.hiz;
+  options.bin_tile_size = s.bin_tile_size;
   tessera::Renderer renderer(options);
   tessera::Framebuffer fb = framebuffer_for(s, width, height, tessera::ColorFormat::kRGBA32F);
   clear(fb, s);

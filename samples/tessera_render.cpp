@@ -34,6 +34,7 @@ struct Options {
   bool no_counters = false;
   bool reversed_z = false;
   bool no_hiz = false;
+  uint32_t bin_tile = 64;
   std::string depth_format = "float32";
   std::vector<float> eye, target, up;
   float fov = 40.0f;
@@ -182,6 +183,7 @@ int run(const Options& o, const CLI::App& app) {
   renderer_options.threads = o.threads;
   renderer_options.raster_counters = !o.no_counters;
   renderer_options.hiz = !o.no_hiz;
+  renderer_options.bin_tile_size = o.bin_tile;
   if (o.bin_budget_mib > 0) {
     renderer_options.bin_memory_budget = static_cast<uint64_t>(o.bin_budget_mib * 1048576.0);
   }
@@ -306,6 +308,9 @@ int main(int argc, char** argv) {
       ->excludes(stats);
   app.add_flag("--no-depth", o.no_depth, "no depth test: later triangles overwrite earlier ones");
   app.add_flag("--no-hiz", o.no_hiz, "fast engine: no Hi-Z block rejection and acceptance");
+  app.add_option("--bin-tile", o.bin_tile, "fast engine: bin tile side in pixels")
+      ->check(CLI::IsMember({32u, 64u, 128u}))
+      ->capture_default_str();
   app.add_option("--depth-format", o.depth_format, "depth buffer format")
       ->check(CLI::IsMember({"float32", "unorm24", "unorm16"}))
       ->capture_default_str();

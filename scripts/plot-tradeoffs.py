@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Draws the speed-against-accuracy charts of docs/TRADEOFFS.md from tessera_sweep's CSV files.
 
 usage: scripts/plot-tradeoffs.py SWEEP_DIR OUT_DIR
@@ -20,7 +20,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 DEFAULTS = {"subpixel_bits": "8", "samples": "1", "depth_format": "float32",
-            "interpolation": "perspective", "hiz": "on"}
+            "interpolation": "perspective", "hiz": "on", "bin_tile_size": "64"}
 
 
 def read(path):
@@ -67,6 +67,8 @@ def error_measures(sweep):
                          fight),
         "interpolation": ("checkerboard cells wrong (fraction of floor pixels)", cells),
         "hiz": ("edge RMSE (8-bit units): the image does not change", edges["hiz"]),
+        "bin_tile_size": ("edge RMSE (8-bit units): the image does not change",
+                          edges["bin_tile_size"]),
     }
 
 

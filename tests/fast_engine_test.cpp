@@ -80,8 +80,9 @@ struct Result {
 
 Result render(const Scene& scene, Backend backend, const Config& config = {SimdTarget::kAuto, 1},
               uint64_t budget = kDefaultBinMemoryBudget, bool raster_counters = true,
-              bool hiz = true) {
+              bool hiz = true, uint32_t bin_tile_size = 64) {
   RendererOptions options;
+  options.bin_tile_size = bin_tile_size;
   options.raster_counters = raster_counters;
   options.hiz = hiz;
   options.backend = backend;
@@ -444,6 +445,36 @@ TEST(FastEngine, ImagesAreByteIdenticalAcrossThreadsRunsAndTargets) {
           << "run " << run;
     }
   });
+}
+
+TEST(FastEngine, EveryBinTileSizeDrawsTheSameImage) {
+  // 32-pixel bin tiles split storage tiles, 128-pixel ones span 2x2 of them (and the screen's
+  // partial last column and row); the image is the same bytes for every size.
+  Scene s = soup(720, 8000, 50.0f, false, true);
+  s.samples = 4;
+  for_each_config([&](const Config& config) {
+    const Result standard = render(s, Backend::kFast, config);
+    for (uint32_t size : {32u, 128u}) {
+      const Result r = render(s, Backend::kFast, config, kDefaultBinMemoryBudget, true, true, size);
+      EXPECT_EQ(r.rgba8, standard.rgba8) << "bin tiles of " << size;
+      EXPECT_EQ(0, std::memcmp(r.depth.data(), standard.depth.data(), r.depth.size() * 4))
+          << "bin tiles of " << size;
+      EXPECT_EQ(r.counters.samples_passed, standard.counters.samples_passed);
+      if (size == 32) {
+        EXPECT_GT(r.counters.bin_references, standard.counters.bin_references);
+      } else {
+        EXPECT_LT(r.counters.bin_references, standard.counters.bin_references);
+      }
+    }
+  });
+}
+
+TEST(FastEngineOptions, AnUnsupportedBinTileSizeIsAnError) {
+  for (uint32_t size : {0u, 16u, 48u, 256u}) {
+    RendererOptions options;
+    options.bin_tile_size = size;
+    EXPECT_THROW(Renderer renderer(options), Error) << size;
+  }
 }
 
 TEST(FastEngine, SmallBinBudgetRendersInPassesWithTheSameImage) {

@@ -33,6 +33,10 @@ RendererOptions checked(const RendererOptions& o) {
                 "bin memory budget " + std::to_string(o.bin_memory_budget) +
                     " bytes is below the minimum of " + std::to_string(kMinBinMemoryBudget));
   }
+  if (o.bin_tile_size != 32 && o.bin_tile_size != 64 && o.bin_tile_size != 128) {
+    throw Error(ErrorCode::kInvalidArgument,
+                "bin tile size " + std::to_string(o.bin_tile_size) + " is not one of 32, 64, 128");
+  }
   return o;
 }
 

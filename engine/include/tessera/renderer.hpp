@@ -39,6 +39,10 @@ struct RendererOptions {
   // drawn and let fully covered blocks in front skip the depth reads. Off, every block is
   // tested sample by sample (same image; docs/TRADEOFFS.md measures what it buys).
   bool hiz = true;
+  // Side in pixels of the screen tiles triangles are binned into and rasterized by, one task
+  // each: 32, 64 or 128. Smaller tiles balance threads better and read less per task; larger
+  // ones bin fewer references per triangle (docs/TRADEOFFS.md).
+  uint32_t bin_tile_size = 64;
 };
 
 // One draw call's vertex data, all in caller-owned memory that the renderer only reads.

@@ -378,8 +378,8 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
   st.px1 = std::min(t.x1, tc.x1);
   st.py0 = std::max(t.y0, tc.y0);
   st.py1 = std::min(t.y1, tc.y1);
-  st.tile_bx = tc.x0 >> 3;
-  st.tile_by = tc.y0 >> 3;
+  st.tile_bx = tc.tile_x0 >> 3;
+  st.tile_by = tc.tile_y0 >> 3;
   for (int e = 0; e < 3; ++e) {
     // Only narrow triangles step edges in int32 (|a| << bits < 2^28); the wide path reads
     // coverage bits computed in int64 instead.

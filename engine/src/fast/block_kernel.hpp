@@ -46,8 +46,10 @@ struct TileContext {
   std::array<int32_t, 16> sample_x{}, sample_y{};
   std::array<float, 16> sample_fx{}, sample_fy{};
 
-  // The tile: its first pixel, last pixel (inclusive, inside the framebuffer) and storage.
+  // The region drawn: its first and last pixel (inclusive, inside the framebuffer): a bin tile
+  // (block-aligned) inside one storage tile. The storage tile's first pixel and storage:
   int32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int32_t tile_x0 = 0, tile_y0 = 0;
   float* depth = nullptr;    // sample plane s of block b at (s * 64 + b) * 64
   uint8_t* rgba8 = nullptr;  // 4 bytes per sample value, same layout
   float* rgba32f = nullptr;  // 4 floats per sample value, same layout

@@ -7,6 +7,7 @@
 #include "engine/src/fast/fast_raster.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <limits>
 #include <vector>
 
@@ -50,6 +51,7 @@ struct FastRasterizer::State {
   uint64_t budget = 0;
   bool count = true;  // raster counters
   bool hiz = true;
+  uint32_t bin_tile_log2 = binning::kTileSizeLog2;
   const KernelTable* kernels = nullptr;
   SetupRangeFn setup = nullptr;
   std::vector<Chunk> chunks;
@@ -62,6 +64,7 @@ FastRasterizer::FastRasterizer(int64_t simd_target, const RendererOptions& optio
   state_->budget = options.bin_memory_budget;
   state_->count = options.raster_counters;
   state_->hiz = options.hiz;
+  state_->bin_tile_log2 = static_cast<uint32_t>(std::countr_zero(options.bin_tile_size));
   state_->kernels = &kernel_table(simd_target);
   state_->setup = setup_kernel(simd_target);
 }
@@ -82,7 +85,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   if (triangles == 0) return;
   const uint32_t samples = fb.desc.samples;
   const uint32_t bits = pipeline.subpixel_bits;
-  const binning::TileGrid& grid = fb.grid;
+  const BinGrid grid = BinGrid::for_size(fb.desc.width, fb.desc.height, st.bin_tile_log2);
 
   // Kernel state for this draw.
   TileContext draw;
@@ -149,10 +152,10 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
           st.setup(ctx, input, t, batch_end, chunk.setups, chunk.counters);
           for (size_t i = first; i < chunk.setups.size(); ++i) {
             const TriangleSetup& s = chunk.setups[i];
-            const uint32_t tx0 = static_cast<uint32_t>(s.x0) >> binning::kTileSizeLog2;
-            const uint32_t tx1 = static_cast<uint32_t>(s.x1) >> binning::kTileSizeLog2;
-            const uint32_t ty0 = static_cast<uint32_t>(s.y0) >> binning::kTileSizeLog2;
-            const uint32_t ty1 = static_cast<uint32_t>(s.y1) >> binning::kTileSizeLog2;
+            const uint32_t tx0 = static_cast<uint32_t>(s.x0) >> grid.size_log2;
+            const uint32_t tx1 = static_cast<uint32_t>(s.x1) >> grid.size_log2;
+            const uint32_t ty0 = static_cast<uint32_t>(s.y0) >> grid.size_log2;
+            const uint32_t ty1 = static_cast<uint32_t>(s.y1) >> grid.size_log2;
             for (uint32_t ty = ty0; ty <= ty1; ++ty) {
               for (uint32_t tx = tx0; tx <= tx1; ++tx) {
                 chunk.bins.add(ty * grid.tiles_x + tx, static_cast<uint32_t>(i));
@@ -191,7 +194,8 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       tbb::parallel_for(tbb::blocked_range<uint32_t>(0, grid.tile_count(), 1),
                         [&](const tbb::blocked_range<uint32_t>& r) {
                           for (uint32_t tile = r.begin(); tile != r.end(); ++tile) {
-                            raster_tile(draw, kernel, fb, tile, views, st.tile_counters[tile]);
+                            raster_tile(draw, kernel, fb, grid, tile, views,
+                                        st.tile_counters[tile]);
                           }
                         });
     });

@@ -1,5 +1,6 @@
-// Tile traversal for the fast engine: the tile's storage is located once, then its bins are
-// read in worker order (submission order) and each triangle goes to the raster kernel.
+// Tile traversal for the fast engine: a bin tile's storage is located once per storage tile it
+// overlaps, then its bins are read in worker order (submission order) and each triangle goes
+// to the raster kernel.
 #include "engine/src/fast/tile_raster.hpp"
 
 #include <algorithm>
@@ -7,30 +8,46 @@
 namespace tessera::fast {
 
 void raster_tile(const TileContext& draw, TriangleKernel kernel, detail::FramebufferStorage& fb,
-                 uint32_t tile, std::span<const ChunkView> chunks, Counters& counters) {
-  TileContext tc = draw;
-  tc.x0 = static_cast<int32_t>((tile % fb.grid.tiles_x) * binning::kTileSize);
-  tc.y0 = static_cast<int32_t>((tile / fb.grid.tiles_x) * binning::kTileSize);
-  tc.x1 = std::min<int32_t>(tc.x0 + binning::kTileSize, fb.desc.width) - 1;
-  tc.y1 = std::min<int32_t>(tc.y0 + binning::kTileSize, fb.desc.height) - 1;
-  const size_t base = size_t{tile} * fb.desc.samples * binning::kTilePixels;
-  tc.depth = fb.depth.data() + base;
-  tc.rgba8 = fb.rgba8.empty() ? nullptr : fb.rgba8.data() + base * 4;
-  tc.rgba32f = fb.rgba32f.empty() ? nullptr : fb.rgba32f.data() + base * 4;
-  tc.hiz_min = fb.hiz_min.data() + size_t{tile} * detail::kBlocksPerTile;
-  tc.hiz_max = fb.hiz_max.data() + size_t{tile} * detail::kBlocksPerTile;
+                 const BinGrid& bins, uint32_t tile, std::span<const ChunkView> chunks,
+                 Counters& counters) {
+  const int32_t size = 1 << bins.size_log2;
+  const int32_t bx0 = static_cast<int32_t>(tile % bins.tiles_x) * size;
+  const int32_t by0 = static_cast<int32_t>(tile / bins.tiles_x) * size;
+  const int32_t bx1 = std::min<int32_t>(bx0 + size, fb.desc.width) - 1;
+  const int32_t by1 = std::min<int32_t>(by0 + size, fb.desc.height) - 1;
+  constexpr int32_t kStorage = binning::kTileSize;
+  // The storage tiles under the bin tile: one, or 2x2 for 128-pixel bin tiles.
+  for (int32_t sy = by0 / kStorage * kStorage; sy <= by1; sy += kStorage) {
+    for (int32_t sx = bx0 / kStorage * kStorage; sx <= bx1; sx += kStorage) {
+      const uint32_t storage_tile =
+          fb.grid.tile_of(static_cast<uint32_t>(sx), static_cast<uint32_t>(sy));
+      TileContext tc = draw;
+      tc.tile_x0 = sx;
+      tc.tile_y0 = sy;
+      tc.x0 = std::max(bx0, sx);
+      tc.y0 = std::max(by0, sy);
+      tc.x1 = std::min(bx1, sx + kStorage - 1);
+      tc.y1 = std::min(by1, sy + kStorage - 1);
+      const size_t base = size_t{storage_tile} * fb.desc.samples * binning::kTilePixels;
+      tc.depth = fb.depth.data() + base;
+      tc.rgba8 = fb.rgba8.empty() ? nullptr : fb.rgba8.data() + base * 4;
+      tc.rgba32f = fb.rgba32f.empty() ? nullptr : fb.rgba32f.data() + base * 4;
+      tc.hiz_min = fb.hiz_min.data() + size_t{storage_tile} * detail::kBlocksPerTile;
+      tc.hiz_max = fb.hiz_max.data() + size_t{storage_tile} * detail::kBlocksPerTile;
 
-  for (const ChunkView& chunk : chunks) {
-    const std::span<const uint32_t> list = chunk.bins->tile(tile);
-    for (size_t n = 0; n < list.size(); ++n) {
-      // Setups were written long before this tile reads them: fetch a few ahead.
-      if (n + 4 < list.size()) {
-        const char* ahead = reinterpret_cast<const char*>(&chunk.setups[list[n + 4]]);
-        for (size_t line = 0; line < sizeof(TriangleSetup); line += 64) {
-          __builtin_prefetch(ahead + line);
+      for (const ChunkView& chunk : chunks) {
+        const std::span<const uint32_t> list = chunk.bins->tile(tile);
+        for (size_t n = 0; n < list.size(); ++n) {
+          // Setups were written long before this tile reads them: fetch a few ahead.
+          if (n + 4 < list.size()) {
+            const char* ahead = reinterpret_cast<const char*>(&chunk.setups[list[n + 4]]);
+            for (size_t line = 0; line < sizeof(TriangleSetup); line += 64) {
+              __builtin_prefetch(ahead + line);
+            }
+          }
+          kernel(tc, chunk.setups[list[n]], counters);
         }
       }
-      kernel(tc, chunk.setups[list[n]], counters);
     }
   }
 }

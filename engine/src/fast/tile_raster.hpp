@@ -18,8 +18,24 @@ struct ChunkView {
   const binning::Bins* bins = nullptr;
 };
 
-// `draw` holds the per-draw fields of TileContext; raster_tile fills in the tile's own.
+// The bin tiles a draw's triangles are sorted into: squares of 2^size_log2 pixels (32, 64 or
+// 128, RendererOptions::bin_tile_size), aligned to the framebuffer's 64x64 storage tiles, so a
+// bin tile lies inside one storage tile or covers whole ones.
+struct BinGrid {
+  uint32_t size_log2 = binning::kTileSizeLog2;
+  uint32_t tiles_x = 0, tiles_y = 0;
+
+  static BinGrid for_size(uint32_t width, uint32_t height, uint32_t size_log2) {
+    const uint32_t size = 1u << size_log2;
+    return {size_log2, (width + size - 1) >> size_log2, (height + size - 1) >> size_log2};
+  }
+  uint32_t tile_count() const { return tiles_x * tiles_y; }
+};
+
+// Rasterizes bin tile `tile`: for each storage tile it overlaps, every binned triangle in
+// submission order. `draw` holds the per-draw fields of TileContext.
 void raster_tile(const TileContext& draw, TriangleKernel kernel, detail::FramebufferStorage& fb,
-                 uint32_t tile, std::span<const ChunkView> chunks, Counters& counters);
+                 const BinGrid& bins, uint32_t tile, std::span<const ChunkView> chunks,
+                 Counters& counters);
 
 }  // namespace tessera::fast
