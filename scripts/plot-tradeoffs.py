@@ -56,14 +56,14 @@ def error_measures(sweep):
     ratio = max([x for x in ratios if x <= 1e4] or ratios)
     fight = {}
     for fmt in dict.fromkeys(r["format"] for r in depth):
-        vals = [float(r["far_wins"]) for r in depth
+        vals = [float(r["near_hidden"]) for r in depth
                 if r["format"] == fmt and float(r["near_far_ratio"]) == ratio]
         fight[fmt] = sum(vals) / len(vals)
     cells = {r["interpolation"]: float(r["wrong_cells"]) for r in interp}
     return {
         "samples": ("edge RMSE (8-bit units) against 256 samples per pixel", edges["samples"]),
         "subpixel_bits": ("largest vertex displacement by snapping (px)", displacement),
-        "depth_format": ("z-fighting: farther plane visible (fraction, near/far 1:%g)" % ratio,
+        "depth_format": ("z-fighting: nearer plane hidden (fraction, near/far 1:%g)" % ratio,
                          fight),
         "interpolation": ("checkerboard cells wrong (fraction of floor pixels)", cells),
         "hiz": ("edge RMSE (8-bit units): the image does not change", edges["hiz"]),
@@ -132,15 +132,17 @@ def depth_chart(sweep, out):
     for k, ratio in enumerate(ratios):
         ax = axes[k // cols][k % cols]
         for fmt in formats:
-            pts = [(float(r["distance"]), float(r["far_wins"])) for r in depth
+            pts = [(float(r["distance"]), float(r["near_hidden"])) for r in depth
                    if r["format"] == fmt and float(r["near_far_ratio"]) == ratio]
             pts.sort()
-            ax.plot([p[0] for p in pts], [p[1] for p in pts], marker=".", label=fmt)
+            # float32 and unorm24 coincide (both keep 24 bits near 1): dashes show both.
+            style = "--" if fmt == "unorm24" else "-"
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], style, marker=".", label=fmt)
         ax.set_xscale("log")
         ax.set_ylim(-0.03, 1.03)
         ax.set_title("near 1, far %g" % ratio)
         ax.set_xlabel("distance of the planes (near plane = 1)")
-        ax.set_ylabel("farther plane visible")
+        ax.set_ylabel("nearer plane hidden (fraction of pixels)")
         ax.grid(True, alpha=0.3)
     for k in range(len(ratios), rows_n * cols):
         axes[k // cols][k % cols].axis("off")
