@@ -330,16 +330,24 @@ double near_plane_hidden(const Settings& s, double near_plane, double far_plane,
   std::vector<tessera::Float4> positions;
   std::vector<float> colors;
   const auto plane = [&](double distance, std::array<float, 4> colour) {
-    // Wide enough to fill the view at the plane's distance.
-    const double half = 2.0 * distance;
-    const double corners[4][2] = {{-half, -half}, {half, -half}, {half, half}, {-half, half}};
-    const int order[6] = {0, 1, 2, 0, 2, 3};
-    for (int k : order) {
-      const double x = corners[k][0], y = corners[k][1];
+    // A 24 x 24 grid of quads just wider than the view at the plane's distance: each vertex's
+    // depth rounds to float on its own, as a real mesh's would, rather than four corners
+    // deciding every pixel.
+    const int cells = 24;
+    const double half = 0.65 * distance;
+    const auto vertex = [&](int i, int j) {
+      const double x = -half + 2.0 * half * i / cells, y = -half + 2.0 * half * j / cells;
       const glm::dvec4 clip = vp * glm::dvec4(x, y, -(distance + 0.1 * y), 1.0);
-      positions.push_back({static_cast<float>(clip.x), static_cast<float>(clip.y),
-                           static_cast<float>(clip.z), static_cast<float>(clip.w)});
-      colors.insert(colors.end(), colour.begin(), colour.end());
+      return tessera::Float4{static_cast<float>(clip.x), static_cast<float>(clip.y),
+                             static_cast<float>(clip.z), static_cast<float>(clip.w)};
+    };
+    for (int j = 0; j < cells; ++j) {
+      for (int i = 0; i < cells; ++i) {
+        for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}}) {
+          positions.push_back(vertex(i + di, j + dj));
+          colors.insert(colors.end(), colour.begin(), colour.end());
+        }
+      }
     }
   };
   plane(d * (1.0 + gap), {0, 1, 0, 1});  // farther: green
@@ -491,6 +499,7 @@ int main(int argc, char** argv) {
   std::string models = "/usr/share/assimp/models";
   int frames = 5;
   bool quick = false;
+  bool depth_only = false;
   app.add_option("--out", out_dir, "directory for the CSV and JSON files")->capture_default_str();
   app.add_option("--workloads", workload_dir, "directory of the standard TRI1 workloads")
       ->capture_default_str();
@@ -500,6 +509,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--quick", quick,
                "small images, one thread count, one frame, no workload files: a smoke run");
+  app.add_flag("--depth-only", depth_only,
+               "only the depth precision study (its tables stay empty)");
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -563,16 +574,15 @@ int main(int argc, char** argv) {
     Progress progress(1 + knobs.size() * (workloads.size() * thread_counts.size() + 1) +
                       ratios.size() * 4 + 2 + 5);
 
-    // Ground truth for edges, once.
-    const tessera::Scene demo = tessera::make_demo_scene();
-    const GroundTruth gt = ground_truth(demo, qw, qh, factor);
-    progress.step("ground truth: 16x16 samples per pixel, reference");
-
     Table speed({"knob", "value", "workload", "triangles", "threads", "ms_median", "mtri_s"});
     Table quality({"knob", "value", "rmse", "psnr", "rmse_edges", "psnr_edges", "edge_pixels"});
+    // Ground truth for edges, once.
+    const tessera::Scene demo = tessera::make_demo_scene();
+    const GroundTruth gt = depth_only ? GroundTruth{} : ground_truth(demo, qw, qh, factor);
+    progress.step("ground truth: 16x16 samples per pixel, reference");
     const size_t edge_pixels =
         static_cast<size_t>(std::count(gt.edge.begin(), gt.edge.end(), true));
-    for (const KnobValue& k : knobs) {
+    for (const KnobValue& k : depth_only ? std::vector<KnobValue>{} : knobs) {
       for (const Workload& w : workloads) {
         for (uint32_t threads : thread_counts) {
           const double ms = time_frames(k.settings, w, threads, frames);

@@ -228,8 +228,13 @@ void SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         batch.w[k][l] = p.w;
         batch.z[k][l] = gl_depth ? 0.5 * (double{p.z} + p.w) : p.z;
         const float* a = count ? &input.attributes[vertex * count] : nullptr;
-        for (int c = 0; c < 4; ++c) {
-          batch.color[k][c][l] = c < static_cast<int>(count) ? a[c] : (c == 3 ? 1.0 : 0.0);
+        if (count >= 4) {  // the usual case: every channel given, no per-channel choice
+          for (int c = 0; c < 4; ++c)
+            batch.color[k][c][l] = a[c];
+        } else {
+          for (int c = 0; c < 4; ++c) {
+            batch.color[k][c][l] = c < static_cast<int>(count) ? a[c] : (c == 3 ? 1.0 : 0.0);
+          }
         }
       }
     }
