@@ -387,15 +387,24 @@ Checkerboard checkerboard(tessera::Interpolation interpolation, uint32_t width, 
   camera.far_plane = 2000.0f;
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   const glm::mat4 view = camera.view(), proj = camera.projection(aspect);
-  const glm::vec3 corners[4] = {{-100, -1, -1}, {100, -1, -1}, {100, -1, -1000}, {-100, -1, -1000}};
-  const int order[6] = {0, 1, 2, 0, 2, 3};
+  // 8 columns by 16 rows of quads, rows spaced geometrically from z = -1 to z = -1000 so each
+  // covers a similar height on screen: coarse enough that affine interpolation visibly bends
+  // the checkers, as in a game's floor mesh.
   std::vector<tessera::Float4> positions;
   std::vector<float> attributes;
-  for (int k : order) {
-    const glm::vec4 clip = proj * view * glm::vec4(corners[k], 1.0f);
+  const auto vertex = [&](int i, int j) {
+    const glm::vec3 p{-100.0f + 200.0f * static_cast<float>(i) / 8.0f, -1.0f,
+                      -std::pow(1000.0f, static_cast<float>(j) / 16.0f)};
+    const glm::vec4 clip = proj * view * glm::vec4(p, 1.0f);
     positions.push_back({clip.x, clip.y, clip.z, clip.w});
     // Texture coordinates in checker cells of 2 x 2 world units.
-    attributes.insert(attributes.end(), {corners[k].x / 2, corners[k].z / 2, 0.0f, 1.0f});
+    attributes.insert(attributes.end(), {p.x / 2, p.z / 2, 0.0f, 1.0f});
+  };
+  for (int j = 0; j < 16; ++j) {
+    for (int i = 0; i < 8; ++i) {
+      for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}})
+        vertex(i + di, j + dj);
+    }
   }
   tessera::RendererOptions options;
   tessera::Renderer renderer(options);
