@@ -309,10 +309,15 @@ class Mask {
 // clip space and in window space: every sample exactly once; clipped exactly when past.
 inline std::vector<Case> guard_band_cases() {
   std::vector<Case> cases;
-  for (uint32_t samples : {1u, 4u}) {
-    const FramebufferDesc d{64, 48, samples, ColorFormat::kRGBA8};
-    const double gx = guard_x(d), gy = guard_y(d);  // 1024 (a float) and 1365.33...
-    const float x_at = static_cast<float>(gx);
+  const FramebufferDesc descs[] = {{64, 48, 1, ColorFormat::kRGBA8},
+                                   {64, 48, 4, ColorFormat::kRGBA8},
+                                   {200, 136, 4, ColorFormat::kRGBA8}};
+  for (const FramebufferDesc& d : descs) {
+    const uint32_t samples = d.samples;
+    const double gx = guard_x(d), gy = guard_y(d);  // 64x48: 1024 (a float) and 1365.33...
+    // The float at the limit or below it is inside, the one above it outside.
+    float x_at = static_cast<float>(gx);
+    if (x_at > gx) x_at = std::nextafter(x_at, 0.0f);
     const float x_past = std::nextafter(x_at, std::numeric_limits<float>::infinity());
     // gy is not a float: the float below it is inside, the one above it outside.
     float y_in = static_cast<float>(gy);
@@ -324,7 +329,7 @@ inline std::vector<Case> guard_band_cases() {
       uint64_t clipped;
     };
     const Size sizes[] = {
-        {"at the guard-band limit", x_at, y_in, 0},
+        {"at or just inside the guard-band limit", x_at, y_in, 0},
         {"one float past the limit in x", x_past, y_in, 2},
         {"one float past the limit in y", x_at, y_past, 2},
         {"twice the limit", 2.0f * x_at, 2.0f * y_in, 2},
@@ -336,7 +341,8 @@ inline std::vector<Case> guard_band_cases() {
     };
     for (const Size& s : sizes) {
       Case c;
-      c.name = std::string("rectangle ") + s.name + ", " + std::to_string(samples) + " samples";
+      c.name = std::string("rectangle ") + s.name + ", " + std::to_string(d.width) + "x" +
+               std::to_string(d.height) + "x" + std::to_string(samples);
       c.desc = d;
       add_rectangle(c, s.x, s.y);
       c.triangles_clipped = s.clipped;
@@ -364,10 +370,10 @@ inline std::vector<Case> guard_band_cases() {
 // corner (64x48) or a pixel centre (61x47), snapped to 4, 6 and 8 subpixel bits.
 inline std::vector<Case> huge_fan_cases() {
   std::vector<Case> cases;
-  const FramebufferDesc descs[] = {{64, 48, 1, ColorFormat::kRGBA8},
-                                   {61, 47, 1, ColorFormat::kRGBA8},
-                                   {61, 47, 4, ColorFormat::kRGBA8},
-                                   {64, 48, 16, ColorFormat::kRGBA8}};
+  const FramebufferDesc descs[] = {
+      {64, 48, 1, ColorFormat::kRGBA8},   {61, 47, 1, ColorFormat::kRGBA8},
+      {61, 47, 4, ColorFormat::kRGBA8},   {64, 48, 16, ColorFormat::kRGBA8},
+      {200, 136, 1, ColorFormat::kRGBA8}, {131, 71, 8, ColorFormat::kRGBA8}};
   for (const FramebufferDesc& d : descs) {
     for (double r : {900.0, 1e5, 1e10, 1e20, 1e30}) {
       for (bool spread : {false, true}) {
@@ -402,7 +408,8 @@ inline std::vector<Case> huge_fan_cases() {
 inline std::vector<Case> near_plane_fan_cases() {
   std::vector<Case> cases;
   const FramebufferDesc descs[] = {{64, 48, 1, ColorFormat::kRGBA8},
-                                   {61, 47, 4, ColorFormat::kRGBA8}};
+                                   {61, 47, 4, ColorFormat::kRGBA8},
+                                   {200, 136, 1, ColorFormat::kRGBA8}};
   for (const FramebufferDesc& d : descs) {
     for (double r : {1e3, 1e30}) {
       for (bool spread : {false, true}) {
@@ -488,13 +495,16 @@ inline std::vector<Case> tiny_triangle_cases() {
     int n;        // cells per side
     Point centre;
     uint32_t samples;
+    uint32_t width = 5, height = 4;
   };
+  // The last two on the corner of four tiles and of four 8x8 blocks.
   for (const Grid& g : {Grid{1e-4, 200, {2.5, 1.5}, 1}, Grid{1e-4, 150, {1.3781, 2.6193}, 16},
-                        Grid{1e-2, 150, {2.0, 2.0}, 4}}) {
+                        Grid{1e-2, 150, {2.0, 2.0}, 4}, Grid{1e-2, 150, {64.0, 64.0}, 4, 72, 72},
+                        Grid{1e-3, 200, {8.0, 16.0}, 8, 72, 72}}) {
     Case c;
     c.name = "grid of " + std::to_string(g.n) + "x" + std::to_string(g.n) + " cells of " +
              std::to_string(g.cell) + " px, " + std::to_string(g.samples) + " samples";
-    c.desc = {5, 4, g.samples, ColorFormat::kRGBA8};
+    c.desc = {g.width, g.height, g.samples, ColorFormat::kRGBA8};
     std::vector<Float4> v;
     const double x0 = g.centre.x - g.n * g.cell / 2, y0 = g.centre.y - g.n * g.cell / 2;
     for (int j = 0; j <= g.n; ++j) {
@@ -576,12 +586,14 @@ inline std::vector<Case> sliver_cases() {
     Case c;
     c.name = "slivers 1e4 x 1e-2 px, slope " + std::to_string(b.slope) + ", " +
              std::to_string(b.samples) + " samples";
-    c.desc = {64, 64, b.samples, ColorFormat::kRGBA8};
-    const double xl = -5000.0, xr = c.desc.width + 5000.0, y0 = 20.37;
+    c.desc = {136, 72, b.samples, ColorFormat::kRGBA8};  // 3 x 2 tiles
+    const double xl = -5000.0, xr = c.desc.width + 5000.0, y0 = 36.37, pivot = 68.0;
     const int n = 300;
-    auto left = [&](int i) { return at_window(c.desc, {xl, y0 + i * 0.01 + b.slope * (xl - 32)}); };
+    auto left = [&](int i) {
+      return at_window(c.desc, {xl, y0 + i * 0.01 + b.slope * (xl - pivot)});
+    };
     auto right = [&](int i) {
-      return at_window(c.desc, {xr, y0 + i * 0.01 + b.slope * (xr - 32)});
+      return at_window(c.desc, {xr, y0 + i * 0.01 + b.slope * (xr - pivot)});
     };
     for (int i = 0; i < n; ++i) {
       c.add_triangle(left(i), right(i), right(i + 1));
