@@ -647,32 +647,54 @@ inline std::vector<Case> w_range_cases() {
 
 // A vertex exactly on w = 0 is a point at infinity: the triangle (A, B, (1, 0, 0, 0)) is the
 // region swept by the segment AB moving right to infinity, bounded by horizontal rays from A
-// and B. Clipped at w = kMinClipW and at the guard band, its pieces cover exactly that.
+// and B. Clipped at w = kMinClipW (or the far plane) and at the guard band, its pieces cover
+// exactly that, at any scale of the vertex from 1e-20 to 1e30. The vertex (0, 0, 0, 0) makes
+// the triangle a segment, which covers nothing.
 inline std::vector<Case> w_zero_cases() {
   std::vector<Case> cases;
   for (uint32_t samples : {1u, 4u}) {
-    for (const Float4 dir : {Float4{1, 0, 0, 0}, Float4{-1, 0, 0.25f, 0}, Float4{0, 1, 0, 0}}) {
-      Case c;
-      c.name = "vertex at infinity (" + std::to_string(dir.x) + ", " + std::to_string(dir.y) +
-               ", " + std::to_string(dir.z) + ", 0), " + std::to_string(samples) + " samples";
-      c.desc = {48, 40, samples, ColorFormat::kRGBA8};
-      const Point a{17.25, 9.5}, b{25.5, 30.0};
-      c.add_triangle(at_window(c.desc, a), at_window(c.desc, b), dir);
-      // NDC +x is window +x, NDC +y is window -y; the far side lies well beyond the screen.
-      const double far = 1e4;
-      std::vector<Point> outline;
-      if (dir.x != 0) {
-        const double sx = dir.x > 0 ? far : -far;
-        outline = {a, b, {sx, b.y}, {sx, a.y}};
-      } else {
-        outline = {a, b, {b.x, -far}, {a.x, -far}};
+    for (const Float4 unit : {Float4{1, 0, 0, 0}, Float4{-1, 0, 0.25f, 0}, Float4{0, 1, 0, 0}}) {
+      // Homogeneous coordinates name the same point at any positive scale (down to where the
+      // w >= kMinClipW plane, 1e-30 from w = 0, cuts the triangle at a finite distance).
+      for (float scale : {1.0f, 1e30f, 1e-20f}) {
+        const Float4 dir{unit.x * scale, unit.y * scale, unit.z * scale, 0};
+        Case c;
+        c.name = "vertex at infinity (" + std::to_string(unit.x) + ", " + std::to_string(unit.y) +
+                 ", " + std::to_string(unit.z) + ", 0) * " +
+                 (scale == 1.0f  ? "1"
+                  : scale > 1.0f ? "1e30"
+                                 : "1e-20") +
+                 ", " + std::to_string(samples) + " samples";
+        c.desc = {48, 40, samples, ColorFormat::kRGBA8};
+        const Point a{17.25, 9.5}, b{25.5, 30.0};
+        c.add_triangle(at_window(c.desc, a), at_window(c.desc, b), dir);
+        // NDC +x is window +x, NDC +y is window -y; the far side lies well beyond the screen.
+        const double far = 1e4;
+        std::vector<Point> outline;
+        if (dir.x != 0) {
+          const double sx = dir.x > 0 ? far : -far;
+          outline = {a, b, {sx, b.y}, {sx, a.y}};
+        } else {
+          outline = {a, b, {b.x, -far}, {a.x, -far}};
+        }
+        Mask m(c.desc);
+        m.add_polygon(outline);
+        c.covers = m.covers();
+        c.triangles_clipped = 1;
+        cases.push_back(std::move(c));
       }
-      Mask m(c.desc);
-      m.add_polygon(outline);
-      c.covers = m.covers();
-      c.triangles_clipped = 1;
-      cases.push_back(std::move(c));
     }
+    // The homogeneous origin is no point at all: the triangle (A, B, 0) is the set of points
+    // a A + b B, whose projection is the segment AB. Clipped at w = kMinClipW, the cut points
+    // are kMinClipW A and kMinClipW B, which project onto A and B: nothing has any area.
+    Case c;
+    c.name =
+        "vertex at the homogeneous origin (0, 0, 0, 0), " + std::to_string(samples) + " samples";
+    c.desc = {48, 40, samples, ColorFormat::kRGBA8};
+    c.add_triangle(at_window(c.desc, {17.25, 9.5}), at_window(c.desc, {25.5, 30.0}), {0, 0, 0, 0});
+    c.covers = [](uint32_t, uint32_t, uint32_t) { return false; };
+    c.triangles_clipped = 1;
+    cases.push_back(std::move(c));
   }
   return cases;
 }
