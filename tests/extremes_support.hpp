@@ -778,7 +778,8 @@ inline std::pair<Counters, std::vector<float>> draw_lists(
 // least 1e-6 (17 float steps below 1.0): the nearer wins every sample in either drawing order.
 // A plane exactly on the near plane (z = 0) has depth exactly 0, one exactly on the far plane
 // (z = w) depth exactly 1, which LESS rejects over a depth of 1 and LESS_EQUAL accepts; neither
-// is clipped.
+// is clipped. Drawn again over itself at depth 0, it passes LESS_EQUAL and GREATER_EQUAL and
+// fails LESS and GREATER, block by block as sample by sample.
 inline void expect_near_far_ratio_1e7_resolved(const RendererOptions& options) {
   const FramebufferDesc desc{72, 40, 4, ColorFormat::kRGBA8};
   const uint64_t n = uint64_t{desc.width} * desc.height * desc.samples;
@@ -805,9 +806,25 @@ inline void expect_near_far_ratio_1e7_resolved(const RendererOptions& options) {
   EXPECT_EQ(c4.triangles_clipped, 0u);
   PipelineState less_equal;
   less_equal.depth_compare = CompareOp::kLessEqual;
-  auto [c5, d5] = draw_lists(options, desc, less_equal, {far});
-  EXPECT_EQ(c5.samples_passed, n) << "depth 1 is less than or equal to 1";
+  auto [c5, d5] = draw_lists(options, desc, less_equal, {far, far});
+  EXPECT_EQ(c5.samples_passed, 2 * n) << "depth 1 is less than or equal to 1, twice";
   EXPECT_EQ(std::count(d5.begin(), d5.end(), 1.0f), static_cast<std::ptrdiff_t>(n));
+  // Depth 0 over depth 0, where a block's nearest and farthest depth equal the triangle's: the
+  // Hi-Z may decide whole blocks, and must decide them as the per-sample test would.
+  const std::vector<Float4> near = distance_quad(1.0, 1.0);
+  for (const auto& [op, passes] :
+       {std::pair{CompareOp::kLess, 1u}, std::pair{CompareOp::kLessEqual, 3u},
+        std::pair{CompareOp::kGreater, 1u}, std::pair{CompareOp::kGreaterEqual, 3u}}) {
+    PipelineState p;
+    p.depth_compare = CompareOp::kAlways;
+    Renderer renderer(options);
+    Framebuffer fb(desc);
+    renderer.draw(fb, p, {near, {}, 0, {}});  // depth 0 everywhere, n samples pass
+    p.depth_compare = op;
+    renderer.draw(fb, p, {near, {}, 0, {}});
+    renderer.draw(fb, p, {near, {}, 0, {}});
+    EXPECT_EQ(renderer.counters().samples_passed, passes * n) << "compare " << static_cast<int>(op);
+  }
 }
 
 // --- Non-finite coordinates ---------------------------------------------------------------------
