@@ -497,10 +497,12 @@ inline std::vector<Case> tiny_triangle_cases() {
     uint32_t samples;
     uint32_t width = 5, height = 4;
   };
-  // The last two on the corner of four tiles and of four 8x8 blocks.
-  for (const Grid& g : {Grid{1e-4, 200, {2.5, 1.5}, 1}, Grid{1e-4, 150, {1.3781, 2.6193}, 16},
-                        Grid{1e-2, 150, {2.0, 2.0}, 4}, Grid{1e-2, 150, {64.0, 64.0}, 4, 72, 72},
-                        Grid{1e-3, 200, {8.0, 16.0}, 8, 72, 72}}) {
+  // Then on the corner of four tiles, of four 8x8 blocks, and at the far end of a 16384-wide
+  // framebuffer, where clip-space floats are 4.9e-4 px apart and the grid's columns collapse.
+  for (const Grid& g :
+       {Grid{1e-4, 200, {2.5, 1.5}, 1}, Grid{1e-4, 150, {1.3781, 2.6193}, 16},
+        Grid{1e-2, 150, {2.0, 2.0}, 4}, Grid{1e-2, 150, {64.0, 64.0}, 4, 72, 72},
+        Grid{1e-3, 200, {8.0, 16.0}, 8, 72, 72}, Grid{1e-3, 300, {16383.25, 1.0}, 4, 16384, 2}}) {
     Case c;
     c.name = "grid of " + std::to_string(g.n) + "x" + std::to_string(g.n) + " cells of " +
              std::to_string(g.cell) + " px, " + std::to_string(g.samples) + " samples";
