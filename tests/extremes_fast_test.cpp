@@ -138,18 +138,35 @@ struct TenMillion {
   size_t triangles() const { return indices.size() / 3; }
 };
 
-// Every target draws the ten million triangles under a 1 MiB budget with one thread, in over a
-// thousand passes, and the best target also with two threads (eight setup chunks, where a pass
-// ends at the first chunk that ran out of budget); each image is the same bytes as one drawn
-// under the default budget (in a few passes), and every sample is covered and passes exactly
-// once. The renderer's heap growth over each draw (the bins and setups it keeps for the next
-// draw) is recorded as a test property.
+// A NaN anywhere rejects the ten million triangles with the framebuffer untouched. Every
+// target draws them under a 1 MiB budget with one thread, in over a thousand passes, and the
+// best target also with two threads (eight setup chunks, where a pass ends at the first chunk
+// that ran out of budget); each image is the same bytes as one drawn under the default budget
+// (in a few passes), and every sample is covered and passes exactly once. The renderer's heap
+// growth over each draw (the bins and setups it keeps for the next draw) is recorded as a test
+// property.
 TEST(ExtremesFast, TenMillionTrianglesUnderASmallBinBudgetRenderInPassesLikeTheDefaultBudget) {
-  const TenMillion grid;
+  TenMillion grid;
   ASSERT_EQ(grid.triangles(), 10000000u);
   const uint64_t samples = uint64_t{TenMillion::kWidth} * TenMillion::kHeight;
   constexpr uint64_t kSmallBudget = uint64_t{1} << 20;
   Framebuffer fb({TenMillion::kWidth, TenMillion::kHeight, 1, ColorFormat::kRGBA8});
+
+  // A NaN in the last of the five million vertices rejects the whole draw before any pass.
+  {
+    RendererOptions options = FastConfig{available_targets().back(), 2}.options();
+    options.bin_memory_budget = kSmallBudget;
+    Renderer renderer(options);
+    const size_t last = grid.vertices.size() - 1;
+    const Float4 kept = grid.vertices[last];
+    grid.vertices[last].y = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_THROW(renderer.draw(fb, PipelineState{}, {grid.vertices, {}, 0, grid.indices}), Error);
+    grid.vertices[last] = kept;
+    EXPECT_EQ(renderer.counters().bin_passes, 0u);
+    EXPECT_EQ(renderer.counters().triangles_submitted, 0u);
+    const std::vector<float> depth = fb.read_depth();
+    EXPECT_EQ(std::count(depth.begin(), depth.end(), 1.0f), static_cast<std::ptrdiff_t>(samples));
+  }
 
   auto draw = [&](const FastConfig& config, uint64_t budget) {
     RendererOptions options = config.options();
