@@ -87,6 +87,19 @@ TEST(ExtremesFast, DenormalCoordinatesDrawOrAreCulledAndDenormalDepthIsKept) {
   }
 }
 
+TEST(ExtremesFast, SingleSampleCasesCoverTheSameWithTheDepthTestOff) {
+  const std::vector<std::vector<uint8_t>> ref =
+      expect_cases_exact_without_depth(reference_options());
+  for (const FastConfig& config : fast_configs({2})) {
+    SCOPED_TRACE(config.name());
+    const std::vector<std::vector<uint8_t>> fast =
+        expect_cases_exact_without_depth(config.options());
+    ASSERT_EQ(fast.size(), ref.size());
+    for (size_t i = 0; i < ref.size(); ++i)
+      EXPECT_EQ(fast[i], ref[i]) << "case " << i << ": the image differs from the reference's";
+  }
+}
+
 TEST(ExtremesFast, NearFarRatioOf1e7ResolvesPlanesOnePercentApartAndHitsZeroAndOne) {
   for (const FastConfig& config : fast_configs()) {
     SCOPED_TRACE(config.name());

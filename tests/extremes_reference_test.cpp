@@ -64,6 +64,10 @@ TEST(ExtremesReference, DenormalCoordinatesDrawOrAreCulledAndDenormalDepthIsKept
     ASSERT_TRUE(d == kUncovered || d == tiny) << d;
 }
 
+TEST(ExtremesReference, SingleSampleCasesCoverTheSameWithTheDepthTestOff) {
+  expect_cases_exact_without_depth(reference_options());
+}
+
 TEST(ExtremesReference, NearFarRatioOf1e7ResolvesPlanesOnePercentApartAndHitsZeroAndOne) {
   expect_near_far_ratio_1e7_resolved(reference_options());
 }

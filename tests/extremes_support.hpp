@@ -791,6 +791,46 @@ inline std::vector<Case> denormal_cases() {
   return cases;
 }
 
+// --- Without the depth test -------------------------------------------------------------------
+
+// Every single-sample case once more with the depth test off (no depth read or written: the
+// kernels without depth): coverage is read from alpha, which every triangle writes as 1 over a
+// clear of 0. The covered pixels are the case's, the hits add up to their number, and the image
+// is returned for comparison with the reference's.
+inline std::vector<std::vector<uint8_t>> expect_cases_exact_without_depth(
+    const RendererOptions& options) {
+  std::vector<std::vector<uint8_t>> images;
+  for (const std::vector<Case>& list :
+       {guard_band_cases(), huge_fan_cases(), near_plane_fan_cases(), framebuffer_size_cases(),
+        tiny_triangle_cases(), sliver_cases(), w_range_cases(), w_zero_cases(), denormal_cases()}) {
+    for (Case c : list) {
+      if (c.desc.samples != 1) continue;
+      SCOPED_TRACE(c.name);
+      c.pipeline.depth_test = false;
+      Renderer renderer(options);
+      Framebuffer fb(c.desc);
+      fb.clear_color({0, 0, 0, 0});
+      renderer.draw(fb, c.pipeline, {c.positions, c.colors, 4, {}});
+      std::vector<uint8_t> rgba = fb.read_rgba8();
+      uint64_t covered = 0, wrong = 0;
+      for (uint32_t y = 0; y < c.desc.height; ++y) {
+        for (uint32_t x = 0; x < c.desc.width; ++x) {
+          const bool got = rgba[(size_t{y} * c.desc.width + x) * 4 + 3] != 0;
+          bool want = !c.covers || c.covers(x, y, 0);
+          if (!want && got && c.may_cover && c.may_cover(x, y, 0)) want = true;
+          covered += got ? 1 : 0;
+          wrong += got != want ? 1 : 0;
+        }
+      }
+      EXPECT_EQ(wrong, 0u);
+      EXPECT_EQ(renderer.counters().samples_covered, covered) << "hits other than one per pixel";
+      images.push_back(std::move(rgba));
+    }
+  }
+  EXPECT_GT(images.size(), 100u);
+  return images;
+}
+
 // --- Depth at a near/far ratio of 1e7 --------------------------------------------------------
 
 // A D3D-style perspective projection with near 1 and far 1e7: z_clip = f / (f - n) (d - n),
