@@ -50,10 +50,19 @@ struct Plane {
   }
 };
 
+// The point of segment inside -> outside where the distance is 0: s inside + t outside with
+// t = d_in / (d_in - d_out) and s = -d_out / (d_in - d_out), the inside vertex's weight computed
+// on its own rather than as 1 - t. When the outside vertex's distance is tiny next to the
+// inside one's, t rounds to 1, and p + t (q - p) loses the inside vertex entirely: a vertex at
+// infinity at a small scale, (0, 1e-20, 0, 0), cut by the top guard-band plane from a vertex A,
+// landed on the screen's centre column instead of straight above A, and the homogeneous origin
+// (0, 0, 0, 0) cut by the w plane landed on the screen centre instead of on A. Kept as s * p, the
+// inside vertex's share fixes the direction.
 ClipVertex intersect(const ClipVertex& inside, double d_in, const ClipVertex& outside, double d_out,
                      uint32_t attribute_count) {
   const double t = d_in / (d_in - d_out);
-  auto lerp = [t](double p, double q) { return p + t * (q - p); };
+  const double s = -d_out / (d_in - d_out);
+  auto lerp = [s, t](double p, double q) { return s * p + t * q; };
   ClipVertex r;
   r.x = lerp(inside.x, outside.x);
   r.y = lerp(inside.y, outside.y);
