@@ -2,6 +2,11 @@
 // draw that touch it, in submission order. A tile's work is the workers' lists read in worker
 // order, which is submission order, so no sorting and no locks are needed (the llvmpipe
 // scene/bin design, with one bin set per setup worker).
+//
+// The lists live in one flat array, built in two steps (a counting sort): while triangles are
+// set up, each one's tile rectangle is recorded and the tiles' reference counts grow; then
+// place() lays the references out tile by tile into an array of exactly their number. The
+// memory a bin set holds is therefore known (bytes()) and its user can keep it within a budget.
 #pragma once
 
 #include <cstdint>
@@ -10,26 +15,85 @@
 
 namespace tessera::binning {
 
+// The tiles a triangle's bounding box touches, inclusive.
+struct TileRect {
+  uint16_t x0, y0, x1, y1;
+  uint32_t count() const { return (uint32_t{x1} - x0 + 1) * (uint32_t{y1} - y0 + 1); }
+};
+
 class Bins {
  public:
-  // Empties every list for a grid of `tile_count` tiles, keeping allocated capacity.
-  void reset(uint32_t tile_count) {
-    if (lists_.size() != tile_count) lists_.assign(tile_count, {});
-    for (auto& list : lists_)
-      list.clear();
+  // Bytes held per tile of the grid (its count and its list's start), whatever is binned.
+  static constexpr uint64_t kBytesPerTile = 2 * sizeof(uint32_t);
+  // Bytes held per binned triangle besides its references (its tile rectangle).
+  static constexpr uint64_t kBytesPerTriangle = sizeof(TileRect);
+  static constexpr uint64_t kBytesPerReference = sizeof(uint32_t);
+
+  // Starts an empty bin set for a grid of `tiles_x` x `tile_count / tiles_x` tiles (allocated
+  // capacity is kept).
+  void reset(uint32_t tile_count, uint32_t tiles_x) {
+    tiles_x_ = tiles_x;
+    counts_.assign(tile_count, 0);
+    starts_.resize(size_t{tile_count} + 1);
+    rects_.clear();
+    lists_.clear();
     references_ = 0;
   }
-  void add(uint32_t tile, uint32_t triangle) {
-    lists_[tile].push_back(triangle);
-    ++references_;
+  // Room for `triangles` recorded triangles without reallocating while recording them.
+  void reserve_triangles(size_t triangles) { rects_.reserve(triangles); }
+  // Frees the triangle and reference arrays (after reset()).
+  void release() {
+    std::vector<TileRect>().swap(rects_);
+    std::vector<uint32_t>().swap(lists_);
   }
-  std::span<const uint32_t> tile(uint32_t t) const { return lists_[t]; }
+  size_t reference_capacity() const { return lists_.capacity(); }
+  // Records the next triangle (index = the number recorded before it).
+  void record(TileRect r) {
+    rects_.push_back(r);
+    for (uint32_t ty = r.y0; ty <= r.y1; ++ty) {
+      for (uint32_t tx = r.x0; tx <= r.x1; ++tx)
+        ++counts_[ty * tiles_x_ + tx];
+    }
+    references_ += r.count();
+  }
+  // Lays the recorded triangles' references out, tile by tile, in recording order.
+  void place() {
+    uint32_t start = 0;
+    for (size_t t = 0; t < counts_.size(); ++t) {
+      starts_[t] = start;
+      start += counts_[t];
+    }
+    starts_[counts_.size()] = start;
+    lists_.resize(start);  // from empty: allocates exactly `start` when it must grow
+    std::vector<uint32_t>& next = counts_;  // reused as each tile's write position
+    for (size_t t = 0; t < next.size(); ++t)
+      next[t] = starts_[t];
+    for (uint32_t i = 0; i < rects_.size(); ++i) {
+      const TileRect r = rects_[i];
+      for (uint32_t ty = r.y0; ty <= r.y1; ++ty) {
+        for (uint32_t tx = r.x0; tx <= r.x1; ++tx)
+          lists_[next[ty * tiles_x_ + tx]++] = i;
+      }
+    }
+  }
+  // Tile t's triangles, in submission order (after place()).
+  std::span<const uint32_t> tile(uint32_t t) const {
+    return {lists_.data() + starts_[t], starts_[t + 1] - starts_[t]};
+  }
   uint64_t references() const { return references_; }
-  // Bytes the references occupy (what the bin memory budget counts).
-  uint64_t bytes() const { return references_ * sizeof(uint32_t); }
+  size_t triangles() const { return rects_.size(); }
+  // Bytes the bin set holds (allocated capacity, not only what is in use).
+  uint64_t bytes() const {
+    return counts_.capacity() * sizeof(uint32_t) + starts_.capacity() * sizeof(uint32_t) +
+           rects_.capacity() * sizeof(TileRect) + lists_.capacity() * sizeof(uint32_t);
+  }
 
  private:
-  std::vector<std::vector<uint32_t>> lists_;
+  uint32_t tiles_x_ = 0;
+  std::vector<uint32_t> counts_;
+  std::vector<uint32_t> starts_;
+  std::vector<TileRect> rects_;
+  std::vector<uint32_t> lists_;
   uint64_t references_ = 0;
 };
 

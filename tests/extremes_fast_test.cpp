@@ -153,11 +153,10 @@ struct TenMillion {
 
 // A NaN anywhere rejects the ten million triangles with the framebuffer untouched. Every
 // target draws them under a 1 MiB budget with one thread, in over a thousand passes, and the
-// best target also with two threads (eight setup chunks, where a pass ends at the first chunk
-// that ran out of budget); each image is the same bytes as one drawn under the default budget
-// (in a few passes), and every sample is covered and passes exactly once. The renderer's heap
-// growth over each draw (the bins and setups it keeps for the next draw) is recorded as a test
-// property.
+// best target also with two threads (eight setup chunks); each image is the same bytes as one drawn
+// under the default budget (in a few passes), and every sample is covered and passes exactly once.
+// The renderer's heap growth over each draw (the bins and setups it keeps for the next draw) stays
+// within the budget and is recorded as a test property.
 TEST(ExtremesFast, TenMillionTrianglesUnderASmallBinBudgetRenderInPassesLikeTheDefaultBudget) {
   TenMillion grid;
   ASSERT_EQ(grid.triangles(), 10000000u);
@@ -192,6 +191,8 @@ TEST(ExtremesFast, TenMillionTrianglesUnderASmallBinBudgetRenderInPassesLikeTheD
     ::testing::Test::RecordProperty(
         config.name() + ", budget " + std::to_string(budget) + ": heap growth bytes",
         std::to_string(growth));
+    // What the renderer keeps for its next draw (bins and setups) stays within the budget.
+    EXPECT_LE(growth, budget);
     const Counters& c = renderer.counters();
     EXPECT_EQ(c.triangles_submitted, grid.triangles());
     EXPECT_EQ(c.samples_covered, samples);
@@ -212,6 +213,38 @@ TEST(ExtremesFast, TenMillionTrianglesUnderASmallBinBudgetRenderInPassesLikeTheD
     EXPECT_GT(passes, 1000u);
     EXPECT_GT(passes, whole_passes);
     EXPECT_EQ(0, std::memcmp(depth.data(), whole.data(), whole.size() * sizeof(float)));
+  }
+}
+
+// The budget holds on a larger grid too (more tiles: more per-tile memory per chunk) and at
+// the smallest budget the renderer accepts, for one and two threads.
+TEST(ExtremesFast, BinnedTrianglesAndReferencesStayWithinTheBinMemoryBudget) {
+  const TenMillion grid;
+  struct Case {
+    uint32_t width, height;
+    uint64_t budget;
+  };
+  for (const Case& k :
+       {Case{TenMillion::kWidth, TenMillion::kHeight, uint64_t{1} << 20},
+        Case{TenMillion::kWidth, TenMillion::kHeight, uint64_t{16} << 20},
+        Case{2048, 1024, uint64_t{1} << 20}, Case{2048, 1024, uint64_t{64} << 10}}) {
+    for (uint32_t threads : {1u, 2u}) {
+      SCOPED_TRACE(std::to_string(k.width) + "x" + std::to_string(k.height) + ", " +
+                   std::to_string(threads) + " threads, budget " + std::to_string(k.budget));
+      RendererOptions options;
+      options.threads = threads;
+      options.bin_memory_budget = k.budget;
+      Renderer renderer(options);
+      Framebuffer fb({k.width, k.height, 1, ColorFormat::kRGBA8});
+      // Only the first million triangles: enough for many passes at these budgets.
+      const std::span<const uint32_t> indices(grid.indices.data(), 3000000);
+      const size_t before = heap_in_use();
+      renderer.draw(fb, PipelineState{}, {grid.vertices, {}, 0, indices});
+      const size_t growth = heap_in_use() - before;
+      EXPECT_GT(renderer.counters().bin_passes, 1u);
+      EXPECT_EQ(renderer.counters().triangles_submitted, 1000000u);
+      EXPECT_LE(growth, k.budget);
+    }
   }
 }
 

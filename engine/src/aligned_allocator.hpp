@@ -1,11 +1,12 @@
 // Allocation for the engine's large buffers (framebuffer planes, the triangle setups a draw
-// bins): 64-byte aligned, so SIMD kernels load and store whole cache lines; buffers of 2 MiB or
-// more are aligned to 2 MiB and, on Linux, advised to live in transparent huge pages. The
+// bins): 64-byte aligned, so SIMD kernels load and store whole cache lines; on Linux the whole
+// 2 MiB pages inside a buffer of 4 MiB or more are advised to be transparent huge pages. The
 // raster phase reads setups at scattered places of a buffer of many megabytes, and with 4 KiB
 // pages nearly every triangle it reads costs a TLB miss (measured: benchmarks/RESULTS.md).
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <new>
 #include <vector>
 
@@ -21,7 +22,6 @@ template <typename T>
 struct CacheAlignedAllocator {
   using value_type = T;
   static constexpr std::align_val_t kAlignment{64};
-  static constexpr std::align_val_t kHugeAlignment{kHugePageSize};
 
   CacheAlignedAllocator() = default;
   template <typename U>
@@ -29,20 +29,21 @@ struct CacheAlignedAllocator {
 
   T* allocate(size_t n) {
     const size_t bytes = n * sizeof(T);
-    if (bytes < kHugePageSize) return static_cast<T*>(::operator new(bytes, kAlignment));
-    void* p = ::operator new(bytes, kHugeAlignment);
+    void* p = ::operator new(bytes, kAlignment);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-    // Advice only: where huge pages are unavailable the call fails and nothing changes.
-    madvise(p, (bytes + kHugePageSize - 1) / kHugePageSize * kHugePageSize, MADV_HUGEPAGE);
+    // Advice only, for the whole 2 MiB pages inside the buffer (no alignment slack is
+    // allocated for it); where huge pages are unavailable the call fails and nothing changes.
+    if (bytes >= 2 * kHugePageSize) {
+      const uintptr_t begin =
+          (reinterpret_cast<uintptr_t>(p) + kHugePageSize - 1) & ~(kHugePageSize - 1);
+      const uintptr_t end = (reinterpret_cast<uintptr_t>(p) + bytes) & ~(kHugePageSize - 1);
+      if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+    }
 #endif
     return static_cast<T*>(p);
   }
-  void deallocate(T* p, size_t n) noexcept {
-    if (n * sizeof(T) < kHugePageSize) {
-      ::operator delete(p, kAlignment);
-    } else {
-      ::operator delete(p, kHugeAlignment);
-    }
+  void deallocate(T* p, size_t) noexcept {
+    ::operator delete(p, kAlignment);
   }
   template <typename U>
   bool operator==(const CacheAlignedAllocator<U>&) const noexcept {

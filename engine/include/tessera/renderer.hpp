@@ -21,8 +21,11 @@ enum class Backend {
 // CPU supports. Forcing a target the CPU lacks is an Error(kInvalidArgument).
 enum class SimdTarget { kAuto, kScalar, kSSE4, kAVX2, kAVX512, kNEON, kSVE };
 
-// Default bound on the memory one draw's binned triangles and bin references may use. A draw
-// that needs more is rasterized in several passes; nothing is dropped.
+// Default bound on the memory the fast engine holds to bin a draw: the set-up triangles, the
+// bin references, the per-tile lists and the draw's bookkeeping, counted as allocated (and
+// kept for the next draw). A draw that needs more is rasterized in several passes; nothing is
+// dropped. Only a single triangle whose own references pass the whole budget (a triangle
+// over very many tiles under a tiny budget) is binned anyway, exceeding it by that triangle.
 inline constexpr uint64_t kDefaultBinMemoryBudget = uint64_t{256} << 20;
 
 struct RendererOptions {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "binning/bins.hpp"
@@ -29,7 +30,7 @@ namespace {
 constexpr size_t kMinChunkTriangles = 4096;
 
 struct Chunk {
-  SetupList setups;
+  SetupList setups;  // reserved to the pass's capacity: never grows past the budget
   binning::Bins bins;
   Counters counters;
   size_t begin = 0, end = 0;  // triangles of the draw given to this chunk
@@ -55,7 +56,10 @@ struct FastRasterizer::State {
   const KernelTable* kernels = nullptr;
   SetupRangeFn setup = nullptr;
   std::vector<Chunk> chunks;
-  std::vector<Counters> tile_counters;
+  // Raster counters, one set per thread (summed after the draw: the totals do not depend on
+  // which thread drew which tile).
+  tbb::enumerable_thread_specific<Counters> raster_counters;
+  double references_per_triangle = 1.5;  // of the last pass: splits the bin budget
 };
 
 FastRasterizer::FastRasterizer(int64_t simd_target, const RendererOptions& options)
@@ -122,18 +126,55 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
 
   const uint32_t threads = static_cast<uint32_t>(arena.max_concurrency());
-  const size_t chunk_count =
+  const uint64_t tiles = grid.tile_count();
+  // The bin memory budget bounds everything a pass bins, as allocated (capacity, not use): the
+  // setups, each triangle's tile rectangle, the references and the per-tile arrays. Each chunk
+  // gets an equal share and grows its arrays only within it; fewer chunks when their per-tile
+  // arrays would take more than a quarter of the budget. A batch that would pass a chunk's
+  // share is undone and ends the chunk's part of the pass.
+  size_t chunk_count =
       std::clamp<size_t>(triangles / kMinChunkTriangles, 1, threads <= 1 ? 1 : size_t{4} * threads);
+  const uint64_t per_tile = binning::Bins::kBytesPerTile;
+  while (chunk_count > 1 && chunk_count * (tiles + 1) * per_tile * 4 > st.budget)
+    --chunk_count;
   if (st.chunks.size() < chunk_count) st.chunks.resize(chunk_count);
-  const uint64_t chunk_budget = std::max<uint64_t>(st.budget / chunk_count, 1);
-  st.tile_counters.assign(grid.tile_count(), Counters{});
+  // The chunks themselves, the allocator's headers of their arrays and the draw's own
+  // bookkeeping (per-thread counters, task state: kBookkeeping) come out of it too.
+  constexpr uint64_t kChunkOverhead = sizeof(Chunk) + 256;
+  constexpr uint64_t kBookkeeping = uint64_t{16} << 10;
+  const uint64_t overhead = st.chunks.capacity() * kChunkOverhead + kBookkeeping;
+  const uint64_t available = st.budget > overhead ? st.budget - overhead : 0;
+  const uint64_t chunk_budget = available / chunk_count;
+  const uint64_t fixed = (tiles + 1) * per_tile;
+  const uint64_t room = chunk_budget > fixed ? chunk_budget - fixed : 0;
+  for (Counters& c : st.raster_counters)
+    c = {};
+
+  constexpr uint64_t kTriangleBytes = sizeof(TriangleSetup) + binning::Bins::kBytesPerTriangle;
+  constexpr uint64_t kReferenceBytes = binning::Bins::kBytesPerReference;
+  constexpr size_t kBatch = 256;
+  // A triangle cut by clip planes becomes at most kMaxClipVertices - 2 pieces.
+  constexpr size_t kMaxPieces = kMaxClipVertices - 2;
 
   size_t start = 0;
   while (start < triangles) {
+    // The room splits between setups and references as the last pass used them; a pass takes
+    // as many triangles as that room holds, so chunks rarely stop early (a chunk that does
+    // makes the later ones redo their range in the next pass).
+    const double refs_per_triangle = std::max(st.references_per_triangle, 1.0);
+    const uint64_t setup_capacity = std::max<uint64_t>(
+        kMaxPieces, static_cast<uint64_t>(static_cast<double>(room) /
+                                          (kTriangleBytes + refs_per_triangle * kReferenceBytes)));
+    const uint64_t reference_capacity =
+        std::max<uint64_t>(room > setup_capacity * kTriangleBytes
+                               ? (room - setup_capacity * kTriangleBytes) / kReferenceBytes
+                               : 0,
+                           tiles);
     const size_t remaining = triangles - start;
+    const size_t pass = std::min<size_t>(remaining, setup_capacity * chunk_count * 9 / 10 + 1);
     for (size_t c = 0; c < chunk_count; ++c) {
-      st.chunks[c].begin = start + remaining * c / chunk_count;
-      st.chunks[c].end = start + remaining * (c + 1) / chunk_count;
+      st.chunks[c].begin = start + pass * c / chunk_count;
+      st.chunks[c].end = start + pass * (c + 1) / chunk_count;
     }
 
     // Setup and binning, one task per chunk.
@@ -141,33 +182,77 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       tbb::parallel_for(size_t{0}, chunk_count, [&](size_t c) {
         Chunk& chunk = st.chunks[c];
         chunk.setups.clear();
-        chunk.bins.reset(grid.tile_count());
+        chunk.bins.reset(grid.tile_count(), grid.tiles_x);
         chunk.counters = {};
         chunk.stopped_at = chunk.end;
-        // Setup in small batches, binning each batch and checking the budget after it.
-        constexpr size_t kBatch = 256;
-        for (size_t t = chunk.begin; t < chunk.end; t += kBatch) {
-          const size_t batch_end = std::min(chunk.end, t + kBatch);
-          const size_t first = chunk.setups.size();
-          st.setup(ctx, input, t, batch_end, chunk.setups, chunk.counters);
-          for (size_t i = first; i < chunk.setups.size(); ++i) {
-            const TriangleSetup& s = chunk.setups[i];
-            const uint32_t tx0 = static_cast<uint32_t>(s.x0) >> grid.size_log2;
-            const uint32_t tx1 = static_cast<uint32_t>(s.x1) >> grid.size_log2;
-            const uint32_t ty0 = static_cast<uint32_t>(s.y0) >> grid.size_log2;
-            const uint32_t ty1 = static_cast<uint32_t>(s.y1) >> grid.size_log2;
-            for (uint32_t ty = ty0; ty <= ty1; ++ty) {
-              for (uint32_t tx = tx0; tx <= tx1; ++tx) {
-                chunk.bins.add(ty * grid.tiles_x + tx, static_cast<uint32_t>(i));
-              }
+        // Bytes the chunk holds with `setups` setups of capacity and `references` references.
+        const auto held = [&](uint64_t setups, uint64_t references) {
+          return setups * kTriangleBytes +
+                 std::max<uint64_t>(chunk.bins.reference_capacity(), references) * kReferenceBytes +
+                 fixed;
+        };
+        if (held(chunk.setups.capacity(), 0) > chunk_budget) {
+          // Capacity kept from a draw with fewer chunks or a smaller grid: start afresh.
+          SetupList().swap(chunk.setups);
+          chunk.bins.release();
+        }
+        size_t t = chunk.begin;
+        size_t batch = kBatch;
+        while (t < chunk.end) {
+          // Room for the batch's worst case (kMaxPieces setups per triangle) without the
+          // vector's own growth, which could pass setup_capacity: grow here, within it.
+          const size_t worst = chunk.setups.size() + batch * kMaxPieces;
+          if (worst > chunk.setups.capacity() && chunk.setups.capacity() < setup_capacity) {
+            const size_t wanted = std::max(worst, chunk.setups.size() + (chunk.end - t) + kBatch);
+            const size_t grown = std::min<size_t>(setup_capacity, wanted);
+            if (held(grown, chunk.bins.references()) <= chunk_budget || chunk.setups.empty()) {
+              chunk.setups.reserve(grown);
+              chunk.bins.reserve_triangles(chunk.setups.capacity());
             }
           }
-          const uint64_t bytes = chunk.setups.size() * sizeof(TriangleSetup) + chunk.bins.bytes();
-          if (bytes >= chunk_budget && batch_end < chunk.end) {
-            chunk.stopped_at = batch_end;
-            break;
+          batch = std::min<size_t>(
+              batch,
+              std::max<size_t>((chunk.setups.capacity() - chunk.setups.size()) / kMaxPieces, 1));
+          const size_t batch_end = std::min(chunk.end, t + batch);
+          const size_t first = chunk.setups.size();
+          const Counters before = chunk.counters;
+          st.setup(ctx, input, t, batch_end, chunk.setups, chunk.counters);
+          uint64_t references = 0;
+          for (size_t i = first; i < chunk.setups.size(); ++i) {
+            const TriangleSetup& s = chunk.setups[i];
+            references += ((static_cast<uint32_t>(s.x1) >> grid.size_log2) -
+                           (static_cast<uint32_t>(s.x0) >> grid.size_log2) + 1) *
+                          uint64_t{(static_cast<uint32_t>(s.y1) >> grid.size_log2) -
+                                   (static_cast<uint32_t>(s.y0) >> grid.size_log2) + 1};
           }
+          const bool fits =
+              chunk.setups.size() <= setup_capacity &&
+              chunk.bins.references() + references <= reference_capacity &&
+              held(chunk.setups.capacity(), chunk.bins.references() + references) <= chunk_budget;
+          if (!fits && (first > 0 || batch > 1)) {
+            // Undo the batch; retry smaller, or end the chunk's part of this pass here.
+            chunk.setups.resize(first);
+            chunk.counters = before;
+            if (first > 0) {
+              chunk.stopped_at = t;
+              break;
+            }
+            batch = std::max<size_t>(batch / 2, 1);
+            continue;
+          }
+          // (A single triangle that does not fit an empty chunk is binned anyway: every pass
+          // makes progress; the budget is then exceeded by that one triangle.)
+          for (size_t i = first; i < chunk.setups.size(); ++i) {
+            const TriangleSetup& s = chunk.setups[i];
+            chunk.bins.record(
+                {static_cast<uint16_t>(static_cast<uint32_t>(s.x0) >> grid.size_log2),
+                 static_cast<uint16_t>(static_cast<uint32_t>(s.y0) >> grid.size_log2),
+                 static_cast<uint16_t>(static_cast<uint32_t>(s.x1) >> grid.size_log2),
+                 static_cast<uint16_t>(static_cast<uint32_t>(s.y1) >> grid.size_log2)});
+          }
+          t = batch_end;
         }
+        chunk.bins.place();
       });
     });
 
@@ -179,6 +264,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     const size_t last = std::min(used, chunk_count - 1);
     const size_t kept = last + 1;
     std::vector<ChunkView> views(kept);
+    uint64_t kept_setups = 0, kept_references = 0;
     for (size_t c = 0; c < kept; ++c) {
       views[c] = {st.chunks[c].setups.data(), &st.chunks[c].bins};
       const Counters& cc = st.chunks[c].counters;
@@ -187,6 +273,12 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       counters.triangles_clipped += cc.triangles_clipped;
       counters.triangles_rasterized += cc.triangles_rasterized;
       counters.bin_references += st.chunks[c].bins.references();
+      kept_setups += st.chunks[c].setups.size();
+      kept_references += st.chunks[c].bins.references();
+    }
+    if (kept_setups > 0) {
+      st.references_per_triangle =
+          static_cast<double>(kept_references) / static_cast<double>(kept_setups);
     }
     ++counters.bin_passes;
 
@@ -195,14 +287,14 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
                         [&](const tbb::blocked_range<uint32_t>& r) {
                           for (uint32_t tile = r.begin(); tile != r.end(); ++tile) {
                             raster_tile(draw, kernel, fb, grid, tile, views,
-                                        st.tile_counters[tile]);
+                                        st.raster_counters.local());
                           }
                         });
     });
     start = st.chunks[last].stopped_at;
   }
 
-  for (const Counters& c : st.tile_counters) {
+  for (const Counters& c : st.raster_counters) {
     counters.blocks_rejected += c.blocks_rejected;
     counters.blocks_accepted += c.blocks_accepted;
     counters.blocks_partial += c.blocks_partial;
