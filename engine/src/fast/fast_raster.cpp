@@ -201,9 +201,12 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
         while (t < chunk.end) {
           // Room for the batch's worst case (kMaxPieces setups per triangle) without the
           // vector's own growth, which could pass setup_capacity: grow here, within it.
-          const size_t worst = chunk.setups.size() + batch * kMaxPieces;
+          const size_t worst = chunk.setups.size() + std::min(batch, chunk.end - t) * kMaxPieces;
           if (worst > chunk.setups.capacity() && chunk.setups.capacity() < setup_capacity) {
-            const size_t wanted = std::max(worst, chunk.setups.size() + (chunk.end - t) + kBatch);
+            // Enough for the rest of the range at one piece per triangle plus a batch's worst
+            // case, so the usual draw grows its setups once.
+            const size_t wanted =
+                std::max(worst, chunk.setups.size() + (chunk.end - t) + kBatch * kMaxPieces);
             const size_t grown = std::min<size_t>(setup_capacity, wanted);
             if (held(grown, chunk.bins.references()) <= chunk_budget || chunk.setups.empty()) {
               chunk.setups.reserve(grown);
