@@ -251,6 +251,10 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
     const auto fx = hn::Load(df, kPixels.fx + i);
     const auto fy = hn::Load(df, kPixels.fy + i);
 
+    // The depth plane's change from the block's first pixel, shared by every sample (the
+    // same sums plane_at forms, so the bits do not change).
+    const auto z_rel =
+        hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
     auto pass_bits = hn::Zero(du);  // bit s: sample s passed
     for (uint32_t s = 0; s < samples; ++s) {
       auto cov = inside;
@@ -267,7 +271,8 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
       auto pass = hn::RebindMask(df, cov);
       if constexpr (kDepth != DepthMode::kOff) {
-        auto z = plane_at(df, fx, fy, z_base + st.z_offset[s], t.z_dx, t.z_dy);
+        auto z = kMulti ? hn::Add(hn::Set(df, z_base + st.z_offset[s]), z_rel)
+                        : plane_at(df, fx, fy, z_base, t.z_dx, t.z_dy);
         z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
         // Fixed-point formats: the step nearest z, ties to even (as encode_depth).
         if (tc.depth_scale > 0.0f) z = hn::Round(hn::Mul(z, hn::Set(df, tc.depth_scale)));
