@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -69,10 +70,10 @@ inline std::string row_picture(const PixelSet& s, int y, int width) {
 }
 
 inline std::string describe(const PixelSet& s) {
-  std::string r;
+  std::ostringstream r;
   for (const Pixel& p : s)
-    r += "(" + std::to_string(p.first) + "," + std::to_string(p.second) + ")";
-  return r;
+    r << "(" << p.first << "," << p.second << ")";
+  return r.str();
 }
 
 }  // namespace tessera::test
