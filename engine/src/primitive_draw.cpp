@@ -1,7 +1,8 @@
 // Routing of point, line and polygon draws (primitive_draw.hpp): the shapes that are
 // triangles go through the triangle pipeline, so both backends bin, clip and rasterize them as
-// they do any triangle; the rest is drawn pixel by pixel by the reference rasterizers, which
-// write depth without keeping the fast engine's Hi-Z bounds, so they mark those stale.
+// they do any triangle; thin lines go to the backend's line rasterizer; round points and
+// scanline polygons are drawn pixel by pixel by the reference rasterizers, which write depth
+// without keeping the fast engine's Hi-Z bounds, so they mark those stale.
 #include "engine/src/primitive_draw.hpp"
 
 #include "engine/src/primitive_assembly.hpp"
@@ -50,9 +51,16 @@ void draw_points(detail::FramebufferStorage& fb, const PipelineState& pipeline,
   }
 }
 
+void draw_reference_thin_lines(detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                               const LineState& state, std::span<const WindowSegment> segments,
+                               Counters& counters) {
+  before_pixel_writes(fb, pipeline);
+  reference::draw_thin_lines(fb, pipeline, state, segments, counters);
+}
+
 void draw_lines(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                 const LineState& state, const DrawInput& input, const TriangleDraw& triangles,
-                Counters& counters) {
+                const ThinLineDraw& thin_lines, Counters& counters) {
   const std::vector<WindowSegment> segments =
       assemble_segments(input, pipeline, state.topology, fb.desc.width, fb.desc.height);
   const size_t n = vertex_count(input);
@@ -63,8 +71,7 @@ void draw_lines(detail::FramebufferStorage& fb, const PipelineState& pipeline,
   if (state.width > 1.0f && !state.antialiased) {
     draw_list(wide_lines(segments, state, fb.desc.width, fb.desc.height), pipeline, triangles);
   } else {
-    before_pixel_writes(fb, pipeline);
-    reference::draw_thin_lines(fb, pipeline, state, segments, counters);
+    thin_lines(state, segments);
   }
 }
 

@@ -1,7 +1,8 @@
 // Drawing points, lines and polygons (Renderer::draw_points, draw_lines, draw_polygon): each
 // draw is assembled and clipped once, then goes either to the triangle pipeline of the
 // renderer's backend (square points, wide lines, tessellated polygons) or to the per-pixel
-// rasterizers of engine/src/reference/ (one-pixel, antialiased and scanline primitives).
+// rasterizers of the backend (one-pixel and antialiased lines) or of engine/src/reference/
+// (round points and scanline polygons, on both backends).
 #pragma once
 
 #include <cstdint>
@@ -15,8 +16,12 @@
 
 namespace tessera {
 
+struct WindowSegment;
+
 // Draws a validated triangle list with the renderer's backend.
 using TriangleDraw = std::function<void(const PipelineState&, const DrawInput&)>;
+// Draws assembled one-pixel or antialiased segments with the renderer's backend.
+using ThinLineDraw = std::function<void(const LineState&, std::span<const WindowSegment>)>;
 
 // Each draws a validated draw (draw_validation.hpp).
 void draw_points(detail::FramebufferStorage& fb, const PipelineState& pipeline,
@@ -24,7 +29,12 @@ void draw_points(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                  Counters& counters);
 void draw_lines(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                 const LineState& state, const DrawInput& input, const TriangleDraw& triangles,
-                Counters& counters);
+                const ThinLineDraw& thin_lines, Counters& counters);
+
+// The reference rasterizer's thin lines, for ThinLineDraw.
+void draw_reference_thin_lines(detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                               const LineState& state, std::span<const WindowSegment> segments,
+                               Counters& counters);
 void draw_polygon(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                   const PolygonState& state, const DrawInput& input,
                   std::span<const uint32_t> contour_sizes, const TriangleDraw& triangles,

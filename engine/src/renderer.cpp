@@ -8,6 +8,7 @@
 
 #include "engine/src/draw_validation.hpp"
 #include "engine/src/fast/fast_raster.hpp"
+#include "engine/src/fast/line_raster.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/primitive_draw.hpp"
 #include "engine/src/reference/reference_raster.hpp"
@@ -106,6 +107,13 @@ void Renderer::draw_lines(Framebuffer& target, const PipelineState& pipeline,
   tessera::draw_lines(
       storage, pipeline, state, input,
       [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+      [&](const LineState& s, std::span<const WindowSegment> segments) {
+        if (impl_->options.backend == Backend::kReference) {
+          draw_reference_thin_lines(storage, pipeline, s, segments, impl_->counters);
+        } else {
+          fast::draw_thin_lines(impl_->arena, storage, pipeline, s, segments, impl_->counters);
+        }
+      },
       impl_->counters);
 }
 
