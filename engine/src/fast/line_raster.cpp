@@ -41,8 +41,10 @@ struct Box {
   bool empty() const { return x0 > x1 || y0 > y1; }
 };
 
+// A segment as the tiles read it: a copy, so that a tile's pass over its list reads one
+// contiguous record per segment (the records are fetched a few ahead, see draw_thin_lines).
 struct LineSetup {
-  const WindowSegment* seg = nullptr;
+  WindowSegment seg;
   Box box;  // the pixels worth visiting, on screen
 };
 
@@ -101,19 +103,36 @@ void diamond_exit(const WindowSegment& seg, uint32_t bits, const Box& box, Visit
   if (lo > hi) return;
   const int64_t minor_lo = x_major ? box.y0 : box.x0, minor_hi = x_major ? box.y1 : box.x1;
   // Minor coordinate at a column centre: (a_minor D + (c - a_major) d_minor) / D, D > 0.
-  const int64_t D = std::abs(d_major), sD = dir;
+  const int64_t D = std::abs(d_major), sD = dir;  // sD * d_major = D > 0
   const bool tie_to_lower = x_major && d_minor * d_major > 0;
+  // Inner columns step the division exactly: a column further along the line (dir) adds
+  // sD * dir * one * d_minor = one * d_minor to the numerator, carried into the quotient q and
+  // the remainder r (0 <= r < D one).
+  const int64_t denominator = D * one, step = d_minor * one;
+  const int64_t step_q = floor_div(step, denominator), step_r = step - step_q * denominator;
+  bool stepping = false;
+  int64_t q = 0, r = 0;
   for (int64_t i = dir > 0 ? lo : hi; dir > 0 ? i <= hi : i >= lo; i += dir) {
     const uint32_t s = static_cast<uint32_t>(std::abs(i - start));
     if (std::abs(i - start) >= 2 && std::abs(i - end) >= 2) {
-      const int64_t c = i * one + h;
-      const int64_t num = sD * (a_minor * d_major + (c - a_major) * d_minor);
-      int64_t j = floor_div(num, D * one);
-      if (tie_to_lower && num == j * D * one) --j;
+      if (!stepping) {
+        const int64_t c = i * one + h;
+        const int64_t num = sD * (a_minor * d_major + (c - a_major) * d_minor);
+        q = floor_div(num, denominator);
+        r = num - q * denominator;
+        stepping = true;
+      } else {
+        q += step_q;
+        r += step_r;
+        if (r >= denominator) r -= denominator, ++q;
+      }
+      // On a row border (r == 0) the nudge decides (see the file comment).
+      const int64_t j = tie_to_lower && r == 0 ? q - 1 : q;
       if (j < minor_lo || j > minor_hi) continue;
       visit(x_major ? i : j, x_major ? j : i, s);
       continue;
     }
+    stepping = false;
     const double m = static_cast<double>(a_minor) + static_cast<double>(i * one + h - a_major) *
                                                         static_cast<double>(d_minor) /
                                                         static_cast<double>(d_major);
@@ -174,8 +193,18 @@ void smooth(const WindowSegment& seg, float width, const Box& box, Visit visit) 
   if (!(length > 0.0)) return;
   const double ux = dx / length, uy = dy / length, half = 0.5 * width;
   const double major = std::max(std::abs(dx), std::abs(dy));
+  const double reach = half + 0.5;  // coverage is 0 at this distance across the line
   for (int64_t py = box.y0; py <= box.y1; ++py) {
-    for (int64_t px = box.x0; px <= box.x1; ++px) {
+    // Pixel centres with |(x - ax) uy - (y - ay) ux| < reach: an interval of x when uy != 0,
+    // widened by a pixel so that rounding never drops one; the coverage below decides.
+    int64_t x_lo = box.x0, x_hi = box.x1;
+    if (uy != 0.0) {
+      const double base = (static_cast<double>(py) + 0.5 - ay) * ux;
+      const double e0 = (base - reach) / uy + ax - 0.5, e1 = (base + reach) / uy + ax - 0.5;
+      x_lo = std::max(x_lo, static_cast<int64_t>(std::floor(std::min(e0, e1))) - 1);
+      x_hi = std::min(x_hi, static_cast<int64_t>(std::ceil(std::max(e0, e1))) + 1);
+    }
+    for (int64_t px = x_lo; px <= x_hi; ++px) {
       const double qx = static_cast<double>(px) + 0.5 - ax, qy = static_cast<double>(py) + 0.5 - ay;
       const double along = qx * ux + qy * uy;
       const double across = std::abs(qx * uy - qy * ux);
@@ -216,12 +245,23 @@ struct TileWriter {
   const PipelineState& pipeline;
   bool blend;
   Counters& counters;
+  bool plain_rgba8 = fb.desc.samples == 1 && !pipeline.depth_test && !blend &&
+                     pipeline.color_write && fb.desc.color_format == ColorFormat::kRGBA8;
 
   // Depth test and write for every sample, then the colour store or blend.
   void write(int64_t px, int64_t py, float depth_in, const std::array<float, 4>& color,
              float coverage) {
     if (!(coverage > 0.0f)) return;
     const uint32_t x = static_cast<uint32_t>(px), y = static_cast<uint32_t>(py);
+    if (plain_rgba8) {  // the common case: one sample, no depth test, no blend
+      uint8_t* p = fb.rgba8.data() + fb.sample_index(x, y, 0) * 4;
+      for (int c = 0; c < 4; ++c)
+        p[c] = to_unorm8(color[c]);
+      ++counters.samples_covered;
+      ++counters.samples_passed;
+      ++counters.pixels_shaded;
+      return;
+    }
     const float depth = std::clamp(depth_in, 0.0f, 1.0f);
     bool any = false, wrote_depth = false;
     for (uint32_t s = 0; s < fb.desc.samples; ++s) {
@@ -271,23 +311,26 @@ struct TileWriter {
 
 void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState& pipeline,
                     const LineState& state, TileWriter& out) {
-  const WindowSegment& seg = *setup.seg;
+  const WindowSegment& seg = setup.seg;
   const Box box = setup.box.intersect(tile);
   if (box.empty()) return;
   const double ex = seg.b.x - seg.a.x, ey = seg.b.y - seg.a.y;
   const double len2 = ex * ex + ey * ey;
+  const double inv_len2 = len2 > 0.0 ? 1.0 / len2 : 0.0;  // t = projection * inv_len2
   auto shade = [&](int64_t px, int64_t py, uint32_t s, float coverage) {
-    const uint32_t n = seg.stipple_base + s;
-    if (!((state.stipple.pattern >> ((n / state.stipple.factor) % 16)) & 1u)) return;
+    if (state.stipple.pattern != 0xFFFF) {
+      const uint32_t n = seg.stipple_base + s;
+      if (!((state.stipple.pattern >> ((n / state.stipple.factor) % 16)) & 1u)) return;
+    }
     double t = 0.0;
     if (len2 > 0.0) {
       t = std::clamp(((static_cast<double>(px) + 0.5 - seg.a.x) * ex +
-                      (static_cast<double>(py) + 0.5 - seg.a.y) * ey) /
-                         len2,
+                      (static_cast<double>(py) + 0.5 - seg.a.y) * ey) *
+                         inv_len2,
                      0.0, 1.0);
     }
     double tc = t;
-    if (pipeline.interpolation == Interpolation::kPerspective) {
+    if (pipeline.interpolation == Interpolation::kPerspective && seg.a.inv_w != seg.b.inv_w) {
       const double qa = (1.0 - t) * seg.a.inv_w, qb = t * seg.b.inv_w;
       tc = qa + qb > 0.0 ? qb / (qa + qb) : t;
     }
@@ -330,7 +373,7 @@ bool setup_segment(const WindowSegment& seg, const LineState& state, uint32_t wi
   const double ex = seg.b.x - seg.a.x, ey = seg.b.y - seg.a.y;
   const double cx0 = seg.a.x + t0 * ex, cx1 = seg.a.x + t1 * ex;
   const double cy0 = seg.a.y + t0 * ey, cy1 = seg.a.y + t1 * ey;
-  out.seg = &seg;
+  out.seg = seg;
   out.box = Box{static_cast<int64_t>(std::floor(std::min(cx0, cx1) - margin)),
                 static_cast<int64_t>(std::floor(std::min(cy0, cy1) - margin)),
                 static_cast<int64_t>(std::floor(std::max(cx0, cx1) + margin)),
@@ -397,7 +440,7 @@ void draw_thin_lines(tbb::task_arena& arena, detail::FramebufferStorage& fb,
           for (uint32_t tx = tx0; tx <= tx1; ++tx) {
             const double x0 = tx * double{binning::kTileSize}, y0 = ty * double{binning::kTileSize};
             if (tx0 != tx1 && ty0 != ty1 && !state.antialiased &&
-                !near_line(*setup.seg, margin, x0, y0, x0 + binning::kTileSize - 1,
+                !near_line(setup.seg, margin, x0, y0, x0 + binning::kTileSize - 1,
                            y0 + binning::kTileSize - 1)) {
               continue;
             }
@@ -419,8 +462,15 @@ void draw_thin_lines(tbb::task_arena& arena, detail::FramebufferStorage& fb,
             const Box tile_box{x0, y0, x0 + binning::kTileSize - 1, y0 + binning::kTileSize - 1};
             TileWriter writer{fb, pipeline, state.antialiased, tile_counters[tile]};
             for (const Chunk& chunk : chunks) {
-              for (uint32_t i : chunk.bins.tile(tile))
-                raster_segment(chunk.setups[i], tile_box, pipeline, state, writer);
+              const std::span<const uint32_t> list = chunk.bins.tile(tile);
+              for (size_t n = 0; n < list.size(); ++n) {
+                if (n + 4 < list.size()) {
+                  const char* ahead = reinterpret_cast<const char*>(&chunk.setups[list[n + 4]]);
+                  for (size_t line = 0; line < sizeof(LineSetup); line += 64)
+                    __builtin_prefetch(ahead + line);
+                }
+                raster_segment(chunk.setups[list[n]], tile_box, pipeline, state, writer);
+              }
             }
           }
         });

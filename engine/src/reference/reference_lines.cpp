@@ -212,19 +212,21 @@ void draw_thin_lines(detail::FramebufferStorage& fb, const PipelineState& pipeli
                           static_cast<int64_t>(std::floor(std::max(cy0, cy1) + margin)))};
 
     // Colour and depth at the pixel centre's projection onto the segment: depth linear in
-    // the window, colour perspective-correct (a/w and 1/w linear) unless affine.
+    // the window, colour perspective-correct (a/w and 1/w linear) unless affine or both ends
+    // have the same w (then the two are the same parameter).
     const double len2 = ex * ex + ey * ey;
+    const double inv_len2 = len2 > 0.0 ? 1.0 / len2 : 0.0;  // t = projection * inv_len2
     auto shade = [&](int64_t px, int64_t py, uint32_t s, float coverage) {
       if (!stipple_on(state.stipple, seg.stipple_base + s)) return;
       double t = 0.0;
       if (len2 > 0.0) {
         t = std::clamp(((static_cast<double>(px) + 0.5 - seg.a.x) * ex +
-                        (static_cast<double>(py) + 0.5 - seg.a.y) * ey) /
-                           len2,
+                        (static_cast<double>(py) + 0.5 - seg.a.y) * ey) *
+                           inv_len2,
                        0.0, 1.0);
       }
       double tc = t;
-      if (pipeline.interpolation == Interpolation::kPerspective) {
+      if (pipeline.interpolation == Interpolation::kPerspective && seg.a.inv_w != seg.b.inv_w) {
         const double qa = (1.0 - t) * seg.a.inv_w, qb = t * seg.b.inv_w;
         tc = qa + qb > 0.0 ? qb / (qa + qb) : t;
       }
