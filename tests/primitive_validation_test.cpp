@@ -118,6 +118,14 @@ TEST_P(PrimitiveValidation, LineListNeedsPairsAndPolygonContoursMustAddUp) {
                   [&] { renderer_.draw_polygon(fb_, {}, p, input()); });
 }
 
+TEST_P(PrimitiveValidation, TessellationHasAVertexLimit) {
+  positions_.assign(kMaxTessellationVertices + 1, {0.1f, 0.2f, 0.5f, 1});
+  colors_.assign(positions_.size() * 4, 1.0f);
+  expect_rejected(ErrorCode::kInvalidInput, "too large to tessellate", [&] {
+    renderer_.draw_polygon(fb_, {}, {FillRule::kEvenOdd, PolygonMethod::kTessellation}, input());
+  });
+}
+
 TEST_P(PrimitiveValidation, DegenerateInputDrawsNothingWithoutError) {
   const std::vector<Float4> same = {
       {0.1f, 0.1f, 0.5f, 1}, {0.1f, 0.1f, 0.5f, 1}, {0.1f, 0.1f, 0.5f, 1}};

@@ -154,6 +154,13 @@ void validate_polygon(const Framebuffer& target, const PipelineState& pipeline,
                       std::span<const uint32_t> contour_sizes) {
   check_state_enum(state.fill_rule, FillRule::kNonZero, "polygon fill rule");
   check_state_enum(state.method, PolygonMethod::kTessellation, "polygon method");
+  if (state.method == PolygonMethod::kTessellation &&
+      vertex_count(input) > kMaxTessellationVertices) {
+    fail(ErrorCode::kInvalidInput, "a polygon of " + std::to_string(vertex_count(input)) +
+                                       " vertices is too large to tessellate (at most " +
+                                       std::to_string(kMaxTessellationVertices) +
+                                       "); draw it with the scanline method");
+  }
   if (!contour_sizes.empty()) {
     uint64_t total = 0;
     for (uint32_t size : contour_sizes)

@@ -100,6 +100,10 @@ enum class PolygonMethod {
   kTessellation,
 };
 
+// Most vertices a polygon drawn with PolygonMethod::kTessellation may have (ear clipping takes
+// time quadratic in the vertex count); larger ones are an Error(kInvalidInput).
+inline constexpr uint32_t kMaxTessellationVertices = 16384;
+
 struct PolygonState {
   FillRule fill_rule = FillRule::kEvenOdd;
   PolygonMethod method = PolygonMethod::kScanline;

@@ -170,7 +170,17 @@ void smooth(const WindowSegment& seg, float width, const Bounds& bounds, Visit v
       std::min<int64_t>(bounds.y1, static_cast<int64_t>(std::floor(std::max(ay, ay + dy) + reach)));
   const double major = std::max(std::abs(dx), std::abs(dy));
   for (int64_t py = y0; py <= y1; ++py) {
-    for (int64_t px = x0; px <= x1; ++px) {
+    // Only centres with |across| < half + 1/2 can be covered: on a row, an interval of x when
+    // uy != 0 (widened by a pixel against rounding; the coverage below decides).
+    int64_t row_x0 = x0, row_x1 = x1;
+    if (uy != 0.0) {
+      const double base = (static_cast<double>(py) + 0.5 - ay) * ux;
+      const double e0 = (base - (half + 0.5)) / uy + ax - 0.5;
+      const double e1 = (base + (half + 0.5)) / uy + ax - 0.5;
+      row_x0 = std::max(row_x0, static_cast<int64_t>(std::floor(std::min(e0, e1))) - 1);
+      row_x1 = std::min(row_x1, static_cast<int64_t>(std::ceil(std::max(e0, e1))) + 1);
+    }
+    for (int64_t px = row_x0; px <= row_x1; ++px) {
       const double qx = static_cast<double>(px) + 0.5 - ax, qy = static_cast<double>(py) + 0.5 - ay;
       const double along = qx * ux + qy * uy;
       const double across = std::abs(qx * uy - qy * ux);
