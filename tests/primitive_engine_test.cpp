@@ -135,8 +135,10 @@ size_t depth_mismatches(const Image& a, const Image& b) {
 }
 
 // Compares the fast engine on every configuration with the reference.
+// Counters are compared unless the draw has triangles the fast engine's Hi-Z may reject
+// whole blocks of (those samples count as covered only in the reference).
 void expect_engine_matches(const Draw& draw, bool exact_color, uint32_t samples = 1,
-                           ColorFormat format = ColorFormat::kRGBA8) {
+                           ColorFormat format = ColorFormat::kRGBA8, bool compare_counters = true) {
   const Image ref = render(draw, Backend::kReference, {SimdTarget::kAuto, 1}, samples, format);
   const Image* first = nullptr;
   std::vector<Image> images;
@@ -148,7 +150,9 @@ void expect_engine_matches(const Draw& draw, bool exact_color, uint32_t samples 
     const std::string what = std::string(names[static_cast<int>(config.target)]) + ", " +
                              std::to_string(config.threads) + " threads";
     EXPECT_EQ(depth_mismatches(fast, ref), 0u) << what;
-    EXPECT_EQ(fast.counters.samples_covered, ref.counters.samples_covered) << what;
+    if (compare_counters) {
+      EXPECT_EQ(fast.counters.samples_covered, ref.counters.samples_covered) << what;
+    }
     if (exact_color) {
       EXPECT_EQ(fast.rgba8, ref.rgba8) << what;
       EXPECT_TRUE(fast.rgba32f == ref.rgba32f) << what;
@@ -188,6 +192,37 @@ TEST(PrimitiveEngine, StippledStripsAndDepthTestedLinesMatchTheReference) {
         r.draw_lines(fb, {}, state, soup.input());  // depth LESS against the line's own depth
       },
       true, 4);
+}
+
+// Lines that write depth between triangle draws: the triangles after them must see that depth
+// (the fast engine's Hi-Z bounds of the blocks the lines wrote are marked stale).
+TEST(PrimitiveEngine, TrianglesAfterLinesSeeTheLinesDepth) {
+  Soup tris(4);
+  for (int i = 0; i < 300; ++i) {
+    // Flat depth per triangle: the fast engine's triangle depth is then exact (a plane's
+    // rounding is the only difference from the reference's, and a flat plane has none).
+    const float cx = tris.x(), cy = tris.y(), z = 0.3f + 0.4f * tris.u(tris.rng);
+    for (int k = 0; k < 3; ++k) {
+      const float a = static_cast<float>(k) * 2.1f + tris.u(tris.rng);
+      tris.vertex(cx + 30.0f * std::cos(a), cy + 30.0f * std::sin(a), z);
+    }
+  }
+  Soup lines(5);
+  for (int i = 0; i < 3000; ++i)
+    lines.vertex(lines.x(), lines.y(), 0.1f + 0.8f * lines.u(lines.rng));
+  const DrawInput first{
+      std::span(tris.positions).first(450), std::span(tris.colors).first(1800), 4, {}};
+  const DrawInput second{
+      std::span(tris.positions).subspan(450), std::span(tris.colors).subspan(1800), 4, {}};
+  LineState state;
+  state.topology = LineTopology::kStrip;
+  expect_engine_matches(
+      [&](Renderer& r, Framebuffer& fb) {
+        r.draw(fb, {}, first);
+        r.draw_lines(fb, {}, state, lines.input());
+        r.draw(fb, {}, second);
+      },
+      false, 1, ColorFormat::kRGBA8, /*compare_counters=*/false);
 }
 
 TEST(PrimitiveEngine, AntialiasedLinesMatchTheReference) {
