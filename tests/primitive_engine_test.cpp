@@ -273,6 +273,21 @@ TEST(PrimitiveEngine, SquarePointsMatchTheReference) {
   }
 }
 
+TEST(PrimitiveEngine, RoundPointsMatchTheReference) {
+  Soup soup(9);
+  for (int i = 0; i < 5000; ++i)
+    soup.vertex(soup.x(), soup.y(), soup.u(soup.rng));
+  for (float size : {3.0f, 9.5f}) {
+    for (uint32_t samples : {1u, 4u}) {
+      expect_engine_matches(
+          [&](Renderer& r, Framebuffer& fb) {
+            r.draw_points(fb, {}, {size, PointShape::kRound}, soup.input());  // depth LESS
+          },
+          true, samples);
+    }
+  }
+}
+
 TEST(PrimitiveEngine, RoundPointsAndScanlinePolygonsMatchTheReference) {
   Soup soup(8);
   for (int i = 0; i < 500; ++i)

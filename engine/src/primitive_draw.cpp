@@ -1,8 +1,8 @@
 // Routing of point, line and polygon draws (primitive_draw.hpp): the shapes that are
 // triangles go through the triangle pipeline, so both backends bin, clip and rasterize them as
-// they do any triangle; thin lines go to the backend's line rasterizer; round points and
-// scanline polygons are drawn pixel by pixel by the reference rasterizers, which write depth
-// without keeping the fast engine's Hi-Z bounds, so they mark those stale.
+// they do any triangle; thin lines and round points go to the backend's own rasterizers;
+// scanline polygons are drawn pixel by pixel by the reference rasterizer, which writes depth
+// without keeping the fast engine's Hi-Z bounds, so it marks those stale.
 #include "engine/src/primitive_draw.hpp"
 
 #include "engine/src/primitive_assembly.hpp"
@@ -36,9 +36,16 @@ size_t vertex_count(const DrawInput& input) {
 
 }  // namespace
 
+void draw_reference_round_points(detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                                 std::span<const WindowPoint> points, float size,
+                                 Counters& counters) {
+  before_pixel_writes(fb, pipeline);
+  reference::draw_round_points(fb, pipeline, points, size, counters);
+}
+
 void draw_points(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                  const PointState& state, const DrawInput& input, const TriangleDraw& triangles,
-                 Counters& counters) {
+                 const RoundPointDraw& round_points, Counters& counters) {
   counters.points_submitted += vertex_count(input);
   const std::vector<WindowPoint> points =
       assemble_points(input, pipeline, fb.desc.width, fb.desc.height);
@@ -46,8 +53,7 @@ void draw_points(detail::FramebufferStorage& fb, const PipelineState& pipeline,
     draw_list(square_points(points, state.size, fb.desc.width, fb.desc.height), pipeline,
               triangles);
   } else {
-    before_pixel_writes(fb, pipeline);
-    reference::draw_round_points(fb, pipeline, points, state.size, counters);
+    round_points(points, state.size);
   }
 }
 

@@ -9,6 +9,7 @@
 #include "engine/src/draw_validation.hpp"
 #include "engine/src/fast/fast_raster.hpp"
 #include "engine/src/fast/line_raster.hpp"
+#include "engine/src/fast/point_raster.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/primitive_draw.hpp"
 #include "engine/src/reference/reference_raster.hpp"
@@ -97,6 +98,13 @@ void Renderer::draw_points(Framebuffer& target, const PipelineState& pipeline,
   tessera::draw_points(
       storage, pipeline, state, input,
       [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+      [&](std::span<const WindowPoint> points, float size) {
+        if (impl_->options.backend == Backend::kReference) {
+          draw_reference_round_points(storage, pipeline, points, size, impl_->counters);
+        } else {
+          fast::draw_round_points(impl_->arena, storage, pipeline, points, size, impl_->counters);
+        }
+      },
       impl_->counters);
 }
 
