@@ -300,6 +300,42 @@ TEST(PrimitiveEngine, RoundPointsAndScanlinePolygonsMatchTheReference) {
       true);
 }
 
+TEST(PrimitiveEngine, ScanlinePolygonsMatchTheReference) {
+  // Self-intersecting polygons of 3 to 40 random vertices across several tiles, some with a
+  // second contour, each with its own tilted depth plane, drawn with depth LESS.
+  std::vector<Soup> polygons;
+  std::vector<std::vector<uint32_t>> sizes;
+  for (int k = 0; k < 40; ++k) {
+    Soup s(300 + k);
+    const float cx = s.x(), cy = s.y(), r = 10.0f + 80.0f * s.u(s.rng);
+    const float z0 = 0.2f + 0.5f * s.u(s.rng), zx = 0.002f * (s.u(s.rng) - 0.5f);
+    const uint32_t n = 3 + static_cast<uint32_t>(k % 38);
+    std::vector<uint32_t> sz = {n};
+    if (k % 3 == 0) sz.push_back(4);
+    for (uint32_t c : sz) {
+      for (uint32_t i = 0; i < c; ++i) {
+        const float x = cx + r * (2.0f * s.u(s.rng) - 1.0f),
+                    y = cy + r * (2.0f * s.u(s.rng) - 1.0f);
+        s.vertex(x, y, z0 + zx * (x - cx));
+      }
+    }
+    polygons.push_back(std::move(s));
+    sizes.push_back(sz);
+  }
+  for (FillRule rule : {FillRule::kEvenOdd, FillRule::kNonZero}) {
+    for (uint32_t samples : {1u, 4u}) {
+      expect_engine_matches(
+          [&](Renderer& r, Framebuffer& fb) {
+            for (size_t k = 0; k < polygons.size(); ++k) {
+              r.draw_polygon(fb, {}, {rule, PolygonMethod::kScanline}, polygons[k].input(),
+                             sizes[k]);
+            }
+          },
+          true, samples);
+    }
+  }
+}
+
 TEST(PrimitiveEngine, TessellatedPolygonsMatchTheReference) {
   std::vector<Soup> polygons;
   std::vector<std::vector<uint32_t>> sizes;

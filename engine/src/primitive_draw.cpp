@@ -1,8 +1,8 @@
 // Routing of point, line and polygon draws (primitive_draw.hpp): the shapes that are
 // triangles go through the triangle pipeline, so both backends bin, clip and rasterize them as
-// they do any triangle; thin lines and round points go to the backend's own rasterizers;
-// scanline polygons are drawn pixel by pixel by the reference rasterizer, which writes depth
-// without keeping the fast engine's Hi-Z bounds, so it marks those stale.
+// they do any triangle; thin lines, round points and scanline polygons go to the backend's
+// own per-pixel rasterizers. The reference's write depth without keeping the fast engine's
+// Hi-Z bounds, so they mark those stale; the fast engine's mark the blocks they write.
 #include "engine/src/primitive_draw.hpp"
 
 #include "engine/src/primitive_assembly.hpp"
@@ -81,17 +81,23 @@ void draw_lines(detail::FramebufferStorage& fb, const PipelineState& pipeline,
   }
 }
 
+void draw_reference_scanline_polygon(detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                                     const std::vector<std::vector<WindowPoint>>& contours,
+                                     FillRule rule, Counters& counters) {
+  before_pixel_writes(fb, pipeline);
+  reference::draw_scanline_polygon(fb, pipeline, contours, rule, counters);
+}
+
 void draw_polygon(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                   const PolygonState& state, const DrawInput& input,
                   std::span<const uint32_t> contour_sizes, const TriangleDraw& triangles,
-                  Counters& counters) {
+                  const ScanlineDraw& scanline, Counters& counters) {
   ++counters.polygons_submitted;
   std::vector<std::vector<WindowPoint>> contours =
       assemble_polygon(input, pipeline, contour_sizes, fb.desc.width, fb.desc.height);
   if (contours.empty()) return;
   if (state.method == PolygonMethod::kScanline) {
-    before_pixel_writes(fb, pipeline);
-    reference::draw_scanline_polygon(fb, pipeline, contours, state.fill_rule, counters);
+    scanline(contours, state.fill_rule);
     return;
   }
   // Flat colour (the first vertex's) and the polygon's depth plane at every vertex, as the

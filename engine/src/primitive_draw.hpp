@@ -1,13 +1,14 @@
 // Drawing points, lines and polygons (Renderer::draw_points, draw_lines, draw_polygon): each
 // draw is assembled and clipped once, then goes either to the triangle pipeline of the
 // renderer's backend (square points, wide lines, tessellated polygons) or to the per-pixel
-// rasterizers of the backend (one-pixel and antialiased lines, round points) or of
-// engine/src/reference/ (scanline polygons, on both backends).
+// rasterizers of the backend (one-pixel and antialiased lines, round points, scanline
+// polygons).
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <vector>
 
 #include "engine/src/framebuffer_storage.hpp"
 #include "tessera/pipeline.hpp"
@@ -25,6 +26,9 @@ using TriangleDraw = std::function<void(const PipelineState&, const DrawInput&)>
 using ThinLineDraw = std::function<void(const LineState&, std::span<const WindowSegment>)>;
 // Draws assembled round points of a size with the renderer's backend.
 using RoundPointDraw = std::function<void(std::span<const WindowPoint>, float)>;
+// Fills assembled polygon contours by the scanline method with the renderer's backend.
+using ScanlineDraw =
+    std::function<void(const std::vector<std::vector<WindowPoint>>& contours, FillRule rule)>;
 
 // Each draws a validated draw (draw_validation.hpp).
 void draw_points(detail::FramebufferStorage& fb, const PipelineState& pipeline,
@@ -46,6 +50,11 @@ void draw_reference_thin_lines(detail::FramebufferStorage& fb, const PipelineSta
 void draw_polygon(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                   const PolygonState& state, const DrawInput& input,
                   std::span<const uint32_t> contour_sizes, const TriangleDraw& triangles,
-                  Counters& counters);
+                  const ScanlineDraw& scanline, Counters& counters);
+
+// The reference rasterizer's scanline fill, for ScanlineDraw.
+void draw_reference_scanline_polygon(detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                                     const std::vector<std::vector<WindowPoint>>& contours,
+                                     FillRule rule, Counters& counters);
 
 }  // namespace tessera

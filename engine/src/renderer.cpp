@@ -10,6 +10,7 @@
 #include "engine/src/fast/fast_raster.hpp"
 #include "engine/src/fast/line_raster.hpp"
 #include "engine/src/fast/point_raster.hpp"
+#include "engine/src/fast/polygon_raster.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/primitive_draw.hpp"
 #include "engine/src/reference/reference_raster.hpp"
@@ -133,6 +134,14 @@ void Renderer::draw_polygon(Framebuffer& target, const PipelineState& pipeline,
   tessera::draw_polygon(
       storage, pipeline, state, input, contour_sizes,
       [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+      [&](const std::vector<std::vector<WindowPoint>>& contours, FillRule rule) {
+        if (impl_->options.backend == Backend::kReference) {
+          draw_reference_scanline_polygon(storage, pipeline, contours, rule, impl_->counters);
+        } else {
+          fast::draw_scanline_polygon(impl_->arena, storage, pipeline, contours, rule,
+                                      impl_->counters);
+        }
+      },
       impl_->counters);
 }
 

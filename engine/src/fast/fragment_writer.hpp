@@ -47,12 +47,13 @@ struct TileWriter {
   bool plain_rgba8 = fb.desc.samples == 1 && !pipeline.depth_test && !blend &&
                      pipeline.color_write && fb.desc.color_format == ColorFormat::kRGBA8;
 
-  // Depth test and write for every sample, then the colour store or blend.
+  // Depth test and write for the samples of `mask`, then the colour store or blend. A sample's
+  // depth is the plane depth_in + dz_dx x + dz_dy y at its offset from the pixel centre.
   void write(int64_t px, int64_t py, float depth_in, const std::array<float, 4>& color,
-             float coverage) {
+             float coverage, uint32_t mask = 0xFFFFu, float dz_dx = 0.0f, float dz_dy = 0.0f) {
     if (!(coverage > 0.0f)) return;
     const uint32_t x = static_cast<uint32_t>(px), y = static_cast<uint32_t>(py);
-    if (plain_rgba8) {  // the common case: one sample, no depth test, no blend
+    if (plain_rgba8 && (mask & 1u)) {  // the common case: one sample, no depth test, no blend
       uint8_t* p = fb.rgba8.data() + fb.sample_index(x, y, 0) * 4;
       for (int c = 0; c < 4; ++c)
         p[c] = to_unorm8(color[c]);
@@ -61,9 +62,13 @@ struct TileWriter {
       ++counters.pixels_shaded;
       return;
     }
-    const float depth = std::clamp(depth_in, 0.0f, 1.0f);
+    if (plain_rgba8) return;  // sample 0 not in the mask
+    const auto pattern = sample_pattern(fb.desc.samples);
     bool any = false, wrote_depth = false;
     for (uint32_t s = 0; s < fb.desc.samples; ++s) {
+      if (!(mask & (1u << s))) continue;
+      const float depth = std::clamp(
+          depth_in + dz_dx * (pattern[s].dx / 16.0f) + dz_dy * (pattern[s].dy / 16.0f), 0.0f, 1.0f);
       ++counters.samples_covered;
       const size_t index = fb.sample_index(x, y, s);
       if (pipeline.depth_test) {
