@@ -31,6 +31,10 @@ struct Options {
   uint32_t subpixel_bits = 8;
   double bin_budget_mib = 0;
   bool stats = false;
+  bool no_counters = false;
+  bool reversed_z = false;
+  bool no_hiz = false;
+  std::string depth_format = "float32";
   std::vector<float> eye, target, up;
   float fov = 40.0f;
   bool ortho = false;
@@ -226,6 +230,10 @@ int run(const Options& o, const CLI::App& app) {
     height = job.capture->height;
     job.triangles = job.capture->positions.size() / 3;
     pipeline = tessera::capture_pipeline();
+    if (o.reversed_z) {
+      throw tessera::Error(tessera::ErrorCode::kInvalidArgument,
+                           "--reversed-z: a capture's clip-space depth is already fixed");
+    }
   } else {
     if (o.input.empty()) {
       job.scene = tessera::make_demo_scene();
@@ -250,6 +258,7 @@ int run(const Options& o, const CLI::App& app) {
       cam.near_plane = std::max(d - 1.5f * radius, 1e-3f * std::max(d, radius));
       cam.far_plane = d + 1.5f * radius;
     }
+    cam.reversed_z = o.reversed_z;
     job.triangles = job.scene->triangle_count();
     if (job.mode == Mode::kWireframe) {
       for (const tessera::SceneObject& obj : job.scene->objects)
@@ -257,6 +266,7 @@ int run(const Options& o, const CLI::App& app) {
     }
   }
   pipeline.depth_test = !o.no_depth;
+  if (o.reversed_z) pipeline.depth_compare = tessera::CompareOp::kGreater;
   pipeline.subpixel_bits = o.subpixel_bits;
   pipeline.interpolation =
       o.affine ? tessera::Interpolation::kAffine : tessera::Interpolation::kPerspective;
@@ -267,9 +277,14 @@ int run(const Options& o, const CLI::App& app) {
   const bool float_color = o.float_color || has_extension(o.output, ".exr");
   tessera::Framebuffer fb(
       {width, height, o.samples,
-       float_color ? tessera::ColorFormat::kRGBA32F : tessera::ColorFormat::kRGBA8});
+       float_color ? tessera::ColorFormat::kRGBA32F : tessera::ColorFormat::kRGBA8,
+       o.depth_format == "unorm16"   ? tessera::DepthFormat::kUnorm16
+       : o.depth_format == "unorm24" ? tessera::DepthFormat::kUnorm24
+                                     : tessera::DepthFormat::kFloat32});
   tessera::RendererOptions renderer_options;
   renderer_options.threads = o.threads;
+  renderer_options.raster_counters = !o.no_counters;
+  renderer_options.hiz = !o.no_hiz;
   if (o.bin_budget_mib > 0) {
     renderer_options.bin_memory_budget = static_cast<uint64_t>(o.bin_budget_mib * 1048576.0);
   }
@@ -281,7 +296,7 @@ int run(const Options& o, const CLI::App& app) {
   auto frame = [&] {
     const auto t0 = Clock::now();
     fb.clear_color(clear);
-    fb.clear_depth(1.0f);
+    fb.clear_depth(o.reversed_z ? 0.0f : 1.0f);
     draw_job(renderer, fb, pipeline, job);
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   };
@@ -393,8 +408,17 @@ int main(int argc, char** argv) {
   app.add_option("--bin-budget", o.bin_budget_mib,
                  "fast engine: MiB of binned triangles per rasterization pass")
       ->check(CLI::Range(0.0625, 65536.0));
-  app.add_flag("--stats", o.stats, "print every renderer counter, per frame");
+  CLI::Option* stats = app.add_flag("--stats", o.stats, "print every renderer counter, per frame");
+  app.add_flag("--no-counters", o.no_counters,
+               "fast engine: do not count blocks, samples and pixels (kernels without counting)")
+      ->excludes(stats);
   app.add_flag("--no-depth", o.no_depth, "no depth test: later triangles overwrite earlier ones");
+  app.add_flag("--no-hiz", o.no_hiz, "fast engine: no Hi-Z block rejection and acceptance");
+  app.add_option("--depth-format", o.depth_format, "depth buffer format")
+      ->check(CLI::IsMember({"float32", "unorm24", "unorm16"}))
+      ->capture_default_str();
+  app.add_flag("--reversed-z", o.reversed_z,
+               "mesh and demo scenes: near maps to depth 1, far to 0, compare greater");
   app.add_option("--cull", o.cull, "face culling")
       ->check(CLI::IsMember({"back", "front", "none"}))
       ->capture_default_str();

@@ -7,7 +7,7 @@ packages=(
   cmake ninja-build g++ pkg-config python3
   libglm-dev libtbb-dev libhwy-dev libopenimageio-dev openimageio-tools libassimp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libosmesa6-dev g++-aarch64-linux-gnu
-  assimp-testmodels
+  assimp-testmodels python3-matplotlib
 )
 
 missing=()

@@ -54,6 +54,7 @@ struct Scene {
   uint32_t height = 72;  // two tiles down
   uint32_t samples = 1;
   ColorFormat format = ColorFormat::kRGBA8;
+  DepthFormat depth_format = DepthFormat::kFloat32;
   PipelineState pipeline;
   std::vector<Float4> positions;
   std::vector<float> colors;
@@ -78,14 +79,17 @@ struct Result {
 };
 
 Result render(const Scene& scene, Backend backend, const Config& config = {SimdTarget::kAuto, 1},
-              uint64_t budget = kDefaultBinMemoryBudget) {
+              uint64_t budget = kDefaultBinMemoryBudget, bool raster_counters = true,
+              bool hiz = true) {
   RendererOptions options;
+  options.raster_counters = raster_counters;
+  options.hiz = hiz;
   options.backend = backend;
   options.threads = config.threads;
   options.simd = config.target;
   options.bin_memory_budget = budget;
   Renderer renderer(options);
-  Framebuffer fb({scene.width, scene.height, scene.samples, scene.format});
+  Framebuffer fb({scene.width, scene.height, scene.samples, scene.format, scene.depth_format});
   fb.clear_color({0.1f, 0.2f, 0.3f, 1.0f});
   DrawInput input;
   input.positions = scene.positions;
@@ -327,6 +331,41 @@ TEST(FastEngine, DepthWithinToleranceOfReference) {
   }
 }
 
+TEST(FastEngine, FixedPointDepthFormatsMatchReference) {
+  // Every triangle writes (compare kAlways), so no decision hangs on a rounded depth: the
+  // stored steps differ from the reference's by at most the float tolerance in steps plus one
+  // for rounding to a step, plus one for the float read-back of two 24-bit steps.
+  struct Case {
+    DepthFormat format;
+    double steps;
+  };
+  for (const Case c :
+       {Case{DepthFormat::kUnorm16, 65535.0}, Case{DepthFormat::kUnorm24, 16777215.0}}) {
+    Scene s = soup(450, 3000, 60.0f, false, true);
+    s.depth_format = c.format;
+    s.pipeline.depth_compare = CompareOp::kAlways;
+    const Result ref = render(s, Backend::kReference);
+    const double tolerance = std::ceil(std::ldexp(kDepthTolerance, -24) * c.steps) + 1.0 +
+                             (c.format == DepthFormat::kUnorm24 ? 1.0 : 0.0);
+    for_each_config([&](const Config& config) {
+      // Coverage too: an uncovered sample keeps the far plane, a step apart from any triangle.
+      const Result fast = render(s, Backend::kFast, config);
+      double worst = 0;
+      for (size_t i = 0; i < ref.depth.size(); ++i) {
+        const double fast_step = double{fast.depth[i]} * c.steps;
+        const double ref_step = double{ref.depth[i]} * c.steps;
+        if (c.format == DepthFormat::kUnorm16) {
+          // Stored on a step: the float read-back k / 65535 is off by at most 65535 * 2^-24
+          // (under 0.004) steps, far from the half step between two.
+          ASSERT_LT(std::abs(fast_step - std::nearbyint(fast_step)), 0.004) << "sample " << i;
+        }
+        worst = std::max(worst, std::abs(fast_step - ref_step));
+      }
+      EXPECT_LE(worst, tolerance) << "format " << static_cast<int>(c.format);
+    });
+  }
+}
+
 TEST(FastEngine, ColorWithinOneStepOfReference) {
   for (ColorFormat format : {ColorFormat::kRGBA8, ColorFormat::kRGBA32F}) {
     for (Interpolation interpolation : {Interpolation::kPerspective, Interpolation::kAffine}) {
@@ -420,6 +459,27 @@ TEST(FastEngine, SmallBinBudgetRendersInPassesWithTheSameImage) {
   });
 }
 
+TEST(FastEngine, RasterCountersOffDrawTheSameImageAndCountNoRasterWork) {
+  Scene s = soup(710, 5000, 60.0f, false, true);
+  s.samples = 4;
+  for_each_config([&](const Config& config) {
+    const Result counted = render(s, Backend::kFast, config);
+    const Result quiet = render(s, Backend::kFast, config, kDefaultBinMemoryBudget, false);
+    EXPECT_GT(counted.counters.blocks_partial, 0u);
+    EXPECT_GT(counted.counters.samples_covered, 0u);
+    EXPECT_GT(counted.counters.pixels_shaded, 0u);
+    EXPECT_EQ(quiet.rgba8, counted.rgba8);
+    EXPECT_EQ(0, std::memcmp(quiet.depth.data(), counted.depth.data(), counted.depth.size() * 4));
+    const Counters& c = quiet.counters;
+    EXPECT_EQ(c.blocks_rejected + c.blocks_accepted + c.blocks_partial, 0u);
+    EXPECT_EQ(c.hiz_rejected + c.hiz_accepted, 0u);
+    EXPECT_EQ(c.samples_covered + c.samples_passed + c.pixels_shaded, 0u);
+    // The triangle and bin counts are kept either way.
+    EXPECT_EQ(c.triangles_rasterized, counted.counters.triangles_rasterized);
+    EXPECT_EQ(c.bin_references, counted.counters.bin_references);
+  });
+}
+
 TEST(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
   Scene s;
   // A screen-filling pair of triangles in front, then many triangles behind it, large enough
@@ -435,13 +495,22 @@ TEST(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
     s.positions.push_back(p);
   }
   s.colors.insert(s.colors.end(), behind.colors.begin(), behind.colors.end());
-  const Result ref = render(s, Backend::kReference);
-  for_each_config([&](const Config& config) {
-    const Result fast = render(s, Backend::kFast, config);
-    EXPECT_GT(fast.counters.hiz_rejected, 10000u);
-    EXPECT_EQ(fast.rgba8, ref.rgba8);
-    EXPECT_EQ(0, std::memcmp(fast.depth.data(), ref.depth.data(), ref.depth.size() * 4));
-  });
+  for (DepthFormat format : {DepthFormat::kFloat32, DepthFormat::kUnorm16}) {
+    s.depth_format = format;
+    const Result ref = render(s, Backend::kReference);
+    for_each_config([&](const Config& config) {
+      const Result fast = render(s, Backend::kFast, config);
+      EXPECT_GT(fast.counters.hiz_rejected, 10000u);
+      EXPECT_EQ(fast.rgba8, ref.rgba8);
+      EXPECT_EQ(0, std::memcmp(fast.depth.data(), ref.depth.data(), ref.depth.size() * 4));
+      // Hi-Z switched off: the same image from per-sample tests alone.
+      const Result plain = render(s, Backend::kFast, config, kDefaultBinMemoryBudget, true, false);
+      EXPECT_EQ(plain.counters.hiz_rejected + plain.counters.hiz_accepted, 0u);
+      EXPECT_GT(plain.counters.samples_covered, fast.counters.samples_covered);
+      EXPECT_EQ(plain.rgba8, ref.rgba8);
+      EXPECT_EQ(0, std::memcmp(plain.depth.data(), ref.depth.data(), ref.depth.size() * 4));
+    });
+  }
 }
 
 TEST(FastEngine, DepthOnlyDrawWritesNoColourAndCulledTrianglesDrawNothing) {

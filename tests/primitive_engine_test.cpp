@@ -225,6 +225,35 @@ TEST(PrimitiveEngine, TrianglesAfterLinesSeeTheLinesDepth) {
       false, 1, ColorFormat::kRGBA8, /*compare_counters=*/false);
 }
 
+// Per-pixel primitives store depth in the framebuffer's format, as triangles do.
+TEST(PrimitiveEngine, PerPixelPrimitivesStoreDepthInTheFramebuffersFormat) {
+  Soup soup(6);
+  for (int i = 0; i < 40; ++i)
+    soup.vertex(soup.x(), soup.y(), 0.3f);
+  for (DepthFormat format : {DepthFormat::kUnorm16, DepthFormat::kUnorm24}) {
+    const double scale = format == DepthFormat::kUnorm16 ? 65535.0 : 16777215.0;
+    const float expected = static_cast<float>(std::nearbyint(double{0.3f} * scale) / scale);
+    for (Backend backend : {Backend::kReference, Backend::kFast}) {
+      Renderer r(RendererOptions{1, backend});
+      FramebufferDesc desc{kWidth, kHeight, 1, ColorFormat::kRGBA8};
+      desc.depth_format = format;
+      Framebuffer fb(desc);
+      LineState lines;
+      lines.topology = LineTopology::kStrip;
+      r.draw_lines(fb, {}, lines, soup.input());
+      r.draw_points(fb, {}, {4.0f, PointShape::kRound}, soup.input());
+      r.draw_polygon(fb, {}, {}, soup.input());
+      size_t written = 0;
+      for (float d : fb.read_depth()) {
+        if (d == 1.0f) continue;
+        EXPECT_EQ(d, expected);
+        ++written;
+      }
+      EXPECT_GT(written, 1000u);
+    }
+  }
+}
+
 TEST(PrimitiveEngine, AntialiasedLinesMatchTheReference) {
   const Soup soup = random_segments(3, 400);
   LineState state;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -292,6 +293,71 @@ TEST(ReferenceClipDepth, NegativeDepthIsVisibleOnlyInTheOpenGlConvention) {
   test::draw(renderer, fb, gl, tri);
   EXPECT_EQ(fb.read_depth()[0], 0.25f);
   EXPECT_EQ(renderer.counters().samples_covered, 28u);  // i + j < 7: 7 + 6 + ... + 1
+}
+
+// --- Depth formats ----------------------------------------------------------------------------
+// Fixed-point formats store the step nearest z (ties to even) and read back step / (2^n - 1);
+// float depth stores z itself.
+
+TEST(ReferenceDepthFormat, FixedPointFormatsStoreTheNearestStep) {
+  struct Case {
+    DepthFormat format;
+    double steps;
+  };
+  for (const Case c : {Case{DepthFormat::kUnorm16, 65535.0},
+                       Case{DepthFormat::kUnorm24, 16777215.0}, Case{DepthFormat::kFloat32, 0.0}}) {
+    Renderer renderer = test::reference_renderer();
+    Framebuffer fb({8, 8, 1, ColorFormat::kRGBA8, c.format});
+    const double z = 0.3f;  // as the float vertex holds it: 0.3000000119...
+    draw_quad(renderer, fb, test::coverage_pipeline(), z, kRed);
+    const float expected = c.steps > 0.0 ? static_cast<float>(std::nearbyint(z * c.steps) / c.steps)
+                                         : static_cast<float>(z);
+    for (float d : fb.read_depth()) {
+      ASSERT_EQ(d, expected) << "format " << static_cast<int>(c.format);
+    }
+  }
+}
+
+TEST(ReferenceDepthFormat, ClearsAreStoredInTheFormatAndClampedToTheUnitRange) {
+  Framebuffer fb({4, 4, 1, ColorFormat::kRGBA8, DepthFormat::kUnorm16});
+  EXPECT_EQ(fb.read_depth()[0], 1.0f);  // a new framebuffer holds the far plane
+  fb.clear_depth(0.1f);
+  EXPECT_EQ(fb.read_depth()[0], static_cast<float>(std::nearbyint(0.1f * 65535.0) / 65535.0));
+  fb.clear_depth(2.0f);
+  EXPECT_EQ(fb.read_depth()[0], 1.0f);
+  fb.clear_depth(-1.0f);
+  EXPECT_EQ(fb.read_depth()[0], 0.0f);
+}
+
+TEST(ReferenceDepthFormat, DepthsWithinOneStepTieAndTheTieGoesByTheCompareOp) {
+  // Green lies 1/4 of a 16-bit step in front of red: a float buffer tells them apart, a
+  // 16-bit one stores both as the same step, so LESS keeps red and LESS_EQUAL draws green.
+  const double z_red = 20000.0 / 65535.0, z_green = z_red - 0.25 / 65535.0;
+  struct Case {
+    DepthFormat format;
+    CompareOp op;
+    std::array<float, 4> winner;
+  };
+  for (const Case c : {Case{DepthFormat::kFloat32, CompareOp::kLess, kGreen},
+                       Case{DepthFormat::kUnorm16, CompareOp::kLess, kRed},
+                       Case{DepthFormat::kUnorm16, CompareOp::kLessEqual, kGreen}}) {
+    Renderer renderer = test::reference_renderer();
+    Framebuffer fb({8, 8, 1, ColorFormat::kRGBA8, c.format});
+    PipelineState p;
+    p.depth_compare = c.op;
+    draw_quad(renderer, fb, p, z_red, kRed);
+    draw_quad(renderer, fb, p, z_green, kGreen);
+    const std::vector<uint8_t> rgba = fb.read_rgba8();
+    for (size_t i = 0; i < rgba.size(); i += 4) {
+      ASSERT_EQ(rgba[i + 1], c.winner[1] > 0 ? 255 : 0)
+          << "format " << static_cast<int>(c.format) << " op " << static_cast<int>(c.op);
+    }
+  }
+}
+
+TEST(ReferenceDepthFormat, AnInvalidFormatIsAnError) {
+  FramebufferDesc desc{4, 4, 1, ColorFormat::kRGBA8, static_cast<DepthFormat>(7)};
+  EXPECT_THROW(Framebuffer fb(desc), Error);
 }
 
 }  // namespace

@@ -31,6 +31,10 @@ void validate(const FramebufferDesc& d) {
   if (d.color_format != ColorFormat::kRGBA8 && d.color_format != ColorFormat::kRGBA32F) {
     throw Error(ErrorCode::kInvalidArgument, "framebuffer colour format is not a ColorFormat");
   }
+  if (d.depth_format != DepthFormat::kFloat32 && d.depth_format != DepthFormat::kUnorm24 &&
+      d.depth_format != DepthFormat::kUnorm16) {
+    throw Error(ErrorCode::kInvalidArgument, "framebuffer depth format is not a DepthFormat");
+  }
 }
 
 }  // namespace
@@ -56,9 +60,10 @@ Framebuffer::Framebuffer(const FramebufferDesc& desc) {
     } else {
       s->rgba32f.assign(samples * 4, 0.0f);
     }
-    s->depth.assign(samples, 1.0f);
-    s->hiz_min.assign(size_t{s->grid.tile_count()} * detail::kBlocksPerTile, 1.0f);
-    s->hiz_max.assign(size_t{s->grid.tile_count()} * detail::kBlocksPerTile, 1.0f);
+    const float far = detail::encode_depth(1.0, detail::depth_scale(desc.depth_format));
+    s->depth.assign(samples, far);
+    s->hiz_min.assign(size_t{s->grid.tile_count()} * detail::kBlocksPerTile, far);
+    s->hiz_max.assign(size_t{s->grid.tile_count()} * detail::kBlocksPerTile, far);
     s->hiz_valid = true;
   } catch (const std::bad_alloc&) {
     throw Error(ErrorCode::kOutOfMemory,
@@ -90,9 +95,15 @@ void Framebuffer::clear_color(std::array<float, 4> rgba) {
 }
 
 void Framebuffer::clear_depth(float depth) {
-  std::fill(storage_->depth.begin(), storage_->depth.end(), depth);
-  std::fill(storage_->hiz_min.begin(), storage_->hiz_min.end(), depth);
-  std::fill(storage_->hiz_max.begin(), storage_->hiz_max.end(), depth);
+  const double scale = detail::depth_scale(storage_->desc.depth_format);
+  // Fixed-point formats hold [0, 1]; a float buffer keeps whatever it is given.
+  const float stored =
+      scale > 0.0 && !std::isnan(depth)
+          ? detail::encode_depth(std::clamp(static_cast<double>(depth), 0.0, 1.0), scale)
+          : depth;
+  std::fill(storage_->depth.begin(), storage_->depth.end(), stored);
+  std::fill(storage_->hiz_min.begin(), storage_->hiz_min.end(), stored);
+  std::fill(storage_->hiz_max.begin(), storage_->hiz_max.end(), stored);
   storage_->hiz_valid = !std::isnan(depth);
 }
 
@@ -147,10 +158,12 @@ std::vector<float> Framebuffer::read_rgba32f() const {
 
 std::vector<float> Framebuffer::read_depth() const {
   const detail::FramebufferStorage& s = *storage_;
+  const double scale = detail::depth_scale(s.desc.depth_format);
   std::vector<float> out(size_t{s.desc.width} * s.desc.height);
   for (uint32_t y = 0; y < s.desc.height; ++y) {
     for (uint32_t x = 0; x < s.desc.width; ++x) {
-      out[size_t{y} * s.desc.width + x] = s.depth[s.sample_index(x, y, 0)];
+      out[size_t{y} * s.desc.width + x] =
+          detail::decode_depth(s.depth[s.sample_index(x, y, 0)], scale);
     }
   }
   return out;
@@ -158,12 +171,14 @@ std::vector<float> Framebuffer::read_depth() const {
 
 std::vector<float> Framebuffer::read_sample_depth() const {
   const detail::FramebufferStorage& s = *storage_;
+  const double scale = detail::depth_scale(s.desc.depth_format);
   const uint32_t n = s.desc.samples;
   std::vector<float> out(size_t{s.desc.width} * s.desc.height * n);
   for (uint32_t y = 0; y < s.desc.height; ++y) {
     for (uint32_t x = 0; x < s.desc.width; ++x) {
       for (uint32_t k = 0; k < n; ++k) {
-        out[(size_t{y} * s.desc.width + x) * n + k] = s.depth[s.sample_index(x, y, k)];
+        out[(size_t{y} * s.desc.width + x) * n + k] =
+            detail::decode_depth(s.depth[s.sample_index(x, y, k)], scale);
       }
     }
   }

@@ -5,37 +5,18 @@
 // (256 bytes of depth), which SIMD kernels load and store whole.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <new>
 #include <vector>
 
 #include "binning/tile_grid.hpp"
+#include "engine/src/aligned_allocator.hpp"
 #include "tessera/framebuffer.hpp"
 
 namespace tessera {
 
 namespace detail {
-
-// Storage aligned to 64 bytes, so that a block's 64 values of one sample (256 bytes of depth)
-// start on a cache line and SIMD kernels can use aligned loads and stores on every target.
-template <typename T>
-struct CacheAlignedAllocator {
-  using value_type = T;
-  static constexpr std::align_val_t kAlignment{64};
-  CacheAlignedAllocator() = default;
-  template <typename U>
-  CacheAlignedAllocator(const CacheAlignedAllocator<U>&) noexcept {}
-  T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
-  void deallocate(T* p, size_t) noexcept { ::operator delete(p, kAlignment); }
-  template <typename U>
-  bool operator==(const CacheAlignedAllocator<U>&) const noexcept {
-    return true;
-  }
-};
-
-template <typename T>
-using AlignedVector = std::vector<T, CacheAlignedAllocator<T>>;
 
 // Blocks of 8x8 pixels: the unit of hierarchical rejection, Hi-Z and SIMD work.
 inline constexpr uint32_t kBlockSizeLog2 = 3;
@@ -52,12 +33,34 @@ constexpr uint32_t in_tile(uint32_t x, uint32_t y) {
          (tx & (kBlockSize - 1));
 }
 
+// Largest value of a fixed-point depth format (its steps are 1 / scale), or 0 for float depth.
+constexpr double depth_scale(DepthFormat format) {
+  switch (format) {
+    case DepthFormat::kUnorm16:
+      return 65535.0;
+    case DepthFormat::kUnorm24:
+      return 16777215.0;
+    case DepthFormat::kFloat32:
+      break;
+  }
+  return 0.0;
+}
+
+// Depth z in [0, 1] as the framebuffer stores it: the float itself, or the fixed-point step
+// round(z * scale) (ties to even), which a float holds exactly below 2^24.
+inline float encode_depth(double z, double scale) {
+  return scale > 0.0 ? static_cast<float>(std::nearbyint(z * scale)) : static_cast<float>(z);
+}
+inline float decode_depth(float stored, double scale) {
+  return scale > 0.0 ? static_cast<float>(stored / scale) : stored;
+}
+
 struct FramebufferStorage {
   FramebufferDesc desc;
   binning::TileGrid grid;
   AlignedVector<uint8_t> rgba8;  // 4 per sample, when desc.color_format == kRGBA8
   AlignedVector<float> rgba32f;  // 4 per sample, when desc.color_format == kRGBA32F
-  AlignedVector<float> depth;    // 1 per sample
+  AlignedVector<float> depth;    // 1 per sample, encoded (encode_depth)
   // Hi-Z: the nearest and farthest depth over all samples of each 8x8 block (index
   // tile * kBlocksPerTile + block in tile). Valid only while hiz_valid; a writer that does not
   // maintain them (the reference rasterizer) clears the flag.

@@ -46,7 +46,7 @@ struct Renderer::Impl {
   explicit Impl(const RendererOptions& o)
       : options(checked(o)),
         arena(o.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(o.threads)),
-        fast(simd::resolve_target(o.simd), o.bin_memory_budget),
+        fast(simd::resolve_target(o.simd), o),
         target_name(simd::target_name(fast.simd_target())) {}
   RendererOptions options;
   tbb::task_arena arena;

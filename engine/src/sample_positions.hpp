@@ -21,9 +21,22 @@ inline constexpr std::array<SampleOffset, 2> kSamples2{{{4, 4}, {-4, -4}}};
 inline constexpr std::array<SampleOffset, 4> kSamples4{{{-2, -6}, {6, -2}, {-6, 2}, {2, 6}}};
 inline constexpr std::array<SampleOffset, 8> kSamples8{
     {{1, -3}, {-1, 3}, {5, 1}, {-3, -5}, {-5, 5}, {-7, -1}, {3, 7}, {7, -7}}};
-inline constexpr std::array<SampleOffset, 16> kSamples16{
-    {{1, 1}, {-1, -3}, {-3, 2}, {4, -1}, {-5, -2}, {2, 5}, {5, 3}, {3, -5},
-     {-2, 6}, {0, -7}, {-4, -6}, {-6, 4}, {-8, 0}, {7, -4}, {6, 7}, {-7, -8}}};
+inline constexpr std::array<SampleOffset, 16> kSamples16{{{1, 1},
+                                                          {-1, -3},
+                                                          {-3, 2},
+                                                          {4, -1},
+                                                          {-5, -2},
+                                                          {2, 5},
+                                                          {5, 3},
+                                                          {3, -5},
+                                                          {-2, 6},
+                                                          {0, -7},
+                                                          {-4, -6},
+                                                          {-6, 4},
+                                                          {-8, 0},
+                                                          {7, -4},
+                                                          {6, 7},
+                                                          {-7, -8}}};
 
 constexpr bool is_valid_sample_count(uint32_t n) {
   return n == 1 || n == 2 || n == 4 || n == 8 || n == 16;
@@ -32,11 +45,16 @@ constexpr bool is_valid_sample_count(uint32_t n) {
 // The pattern for a valid sample count (see is_valid_sample_count).
 constexpr std::span<const SampleOffset> sample_pattern(uint32_t n) {
   switch (n) {
-    case 2: return kSamples2;
-    case 4: return kSamples4;
-    case 8: return kSamples8;
-    case 16: return kSamples16;
-    default: return kSamples1;
+    case 2:
+      return kSamples2;
+    case 4:
+      return kSamples4;
+    case 8:
+      return kSamples8;
+    case 16:
+      return kSamples16;
+    default:
+      return kSamples1;
   }
 }
 

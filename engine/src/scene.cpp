@@ -11,19 +11,25 @@
 
 namespace tessera {
 
-glm::mat4 Camera::view() const { return glm::lookAtRH(eye, target, up); }
+glm::mat4 Camera::view() const {
+  return glm::lookAtRH(eye, target, up);
+}
 
 glm::mat4 Camera::projection(float aspect, ClipDepth depth) const {
   const bool zo = depth == ClipDepth::kZeroToOne;
+  // GLM's projections map the first depth given to 0 and the second to 1 (-1 and 1 for the
+  // OpenGL range): reversed Z swaps them, mapping the far plane to 0 and the near plane to 1.
+  const float to_zero = reversed_z ? far_plane : near_plane;
+  const float to_one = reversed_z ? near_plane : far_plane;
   if (orthographic) {
     const float h = 0.5f * ortho_height;
     const float w = h * aspect;
-    return zo ? glm::orthoRH_ZO(-w, w, -h, h, near_plane, far_plane)
-              : glm::orthoRH_NO(-w, w, -h, h, near_plane, far_plane);
+    return zo ? glm::orthoRH_ZO(-w, w, -h, h, to_zero, to_one)
+              : glm::orthoRH_NO(-w, w, -h, h, to_zero, to_one);
   }
   const float fovy = glm::radians(fov_y_degrees);
-  return zo ? glm::perspectiveRH_ZO(fovy, aspect, near_plane, far_plane)
-            : glm::perspectiveRH_NO(fovy, aspect, near_plane, far_plane);
+  return zo ? glm::perspectiveRH_ZO(fovy, aspect, to_zero, to_one)
+            : glm::perspectiveRH_NO(fovy, aspect, to_zero, to_one);
 }
 
 Camera frame_bounds(const Bounds& bounds, float aspect, glm::vec3 direction, float fov_y_degrees) {
@@ -66,9 +72,9 @@ std::vector<float> shade_vertices(const Mesh& mesh, const glm::mat4& model, glm:
     const float specular =
         diffuse > 0.0f ? std::pow(std::max(glm::dot(reflected, to_eye), 0.0f), light.shininess)
                        : 0.0f;
-    const glm::vec3 rgb = glm::vec3(base) * (light.ambient + (1.0f - light.ambient) * diffuse) *
-                              light.color +
-                          light.specular * specular * light.color;
+    const glm::vec3 rgb =
+        glm::vec3(base) * (light.ambient + (1.0f - light.ambient) * diffuse) * light.color +
+        light.specular * specular * light.color;
     out[i * 4 + 0] = std::min(rgb.r, 1.0f);
     out[i * 4 + 1] = std::min(rgb.g, 1.0f);
     out[i * 4 + 2] = std::min(rgb.b, 1.0f);
@@ -88,7 +94,8 @@ std::vector<Float4> to_clip_space(std::span<const glm::vec3> positions, const gl
 
 size_t Scene::triangle_count() const noexcept {
   size_t n = 0;
-  for (const SceneObject& o : objects) n += o.mesh.triangle_count();
+  for (const SceneObject& o : objects)
+    n += o.mesh.triangle_count();
   return n;
 }
 
@@ -112,7 +119,8 @@ void draw_scene(Renderer& renderer, Framebuffer& target, const PipelineState& pi
       scene.camera.projection(aspect, pipeline.clip_depth) * scene.camera.view();
   for (const SceneObject& o : scene.objects) {
     const std::vector<Float4> clip = to_clip_space(o.mesh.positions, view_projection * o.model);
-    const std::vector<float> colors = shade_vertices(o.mesh, o.model, scene.camera.eye, scene.light);
+    const std::vector<float> colors =
+        shade_vertices(o.mesh, o.model, scene.camera.eye, scene.light);
     DrawInput input;
     input.positions = clip;
     input.attributes = colors;

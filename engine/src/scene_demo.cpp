@@ -5,8 +5,8 @@
 #include <functional>
 #include <numbers>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "tessera/scene.hpp"
 
@@ -32,9 +32,7 @@ Mesh parametric(int nu, int nv, bool wrap_u, bool wrap_v,
       m.colors.push_back(color(u, v));
     }
   }
-  auto index = [&](int i, int j) {
-    return static_cast<uint32_t>((j % rows) * cols + (i % cols));
-  };
+  auto index = [&](int i, int j) { return static_cast<uint32_t>((j % rows) * cols + (i % cols)); };
   for (int j = 0; j < nv; ++j) {
     for (int i = 0; i < nu; ++i) {
       const uint32_t a = index(i, j), b = index(i + 1, j), c = index(i + 1, j + 1),
@@ -74,8 +72,8 @@ Scene make_demo_scene() {
       96, 96, false, false,
       [](float u, float v) {
         const float x = (u - 0.5f) * 12.0f, z = (v - 0.5f) * 12.0f;
-        const float y = 0.25f * std::sin(1.3f * x) * std::cos(1.1f * z) +
-                        0.12f * std::sin(2.7f * x + 1.7f * z);
+        const float y =
+            0.25f * std::sin(1.3f * x) * std::cos(1.1f * z) + 0.12f * std::sin(2.7f * x + 1.7f * z);
         return glm::vec3(x, y - 1.0f, z);
       },
       [](float u, float v) {
@@ -101,32 +99,36 @@ Scene make_demo_scene() {
                    glm::vec3(0.0f, 1.0f, 0.0f))});
 
   // A trefoil-knot tube threaded through the torus's hole.
-  scene.objects.push_back(
-      {parametric(
-           320, 20, true, true,
-           [](float u, float v) {
-             auto curve = [](float t) {
-               return 0.42f * glm::vec3(std::sin(t) + 2.0f * std::sin(2.0f * t),
-                                        std::cos(t) - 2.0f * std::cos(2.0f * t),
-                                        -std::sin(3.0f * t));
-             };
-             const float t = 2.0f * kPi * u;
-             const glm::vec3 p = curve(t);
-             const glm::vec3 tangent = glm::normalize(curve(t + 1e-3f) - curve(t - 1e-3f));
-             const glm::vec3 side = glm::normalize(glm::cross(tangent, glm::vec3(0, 0, 1)));
-             const glm::vec3 normal = glm::cross(side, tangent);
-             const float b = 2.0f * kPi * v;
-             return p + 0.16f * (std::cos(b) * side + std::sin(b) * normal);
-           },
-           [](float u, float) { return glm::mix(glm::vec4(0.95f, 0.75f, 0.2f, 1.0f),
-                                                glm::vec4(0.85f, 0.25f, 0.15f, 1.0f),
-                                                0.5f + 0.5f * std::sin(6.0f * kPi * u)); }),
-       glm::translate(glm::mat4(1.0f), glm::vec3(2.3f, 0.55f, -1.2f))});
+  scene.objects.push_back({parametric(
+                               320, 20, true, true,
+                               [](float u, float v) {
+                                 auto curve = [](float t) {
+                                   return 0.42f * glm::vec3(std::sin(t) + 2.0f * std::sin(2.0f * t),
+                                                            std::cos(t) - 2.0f * std::cos(2.0f * t),
+                                                            -std::sin(3.0f * t));
+                                 };
+                                 const float t = 2.0f * kPi * u;
+                                 const glm::vec3 p = curve(t);
+                                 const glm::vec3 tangent =
+                                     glm::normalize(curve(t + 1e-3f) - curve(t - 1e-3f));
+                                 const glm::vec3 side =
+                                     glm::normalize(glm::cross(tangent, glm::vec3(0, 0, 1)));
+                                 const glm::vec3 normal = glm::cross(side, tangent);
+                                 const float b = 2.0f * kPi * v;
+                                 return p + 0.16f * (std::cos(b) * side + std::sin(b) * normal);
+                               },
+                               [](float u, float) {
+                                 return glm::mix(glm::vec4(0.95f, 0.75f, 0.2f, 1.0f),
+                                                 glm::vec4(0.85f, 0.25f, 0.15f, 1.0f),
+                                                 0.5f + 0.5f * std::sin(6.0f * kPi * u));
+                               }),
+                           glm::translate(glm::mat4(1.0f), glm::vec3(2.3f, 0.55f, -1.2f))});
 
   // Spheres, one sunk into the ground and the torus, one floating behind.
   scene.objects.push_back(
       {sphere(64, {0.55f, 0.75f, 1.0f, 1.0f}, {0.10f, 0.20f, 0.60f, 1.0f}),
-       glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(-1.9f, -0.35f, 0.9f)), glm::vec3(0.9f))});
+       glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(-1.9f, -0.35f, 0.9f)),
+                  glm::vec3(0.9f))});
   scene.objects.push_back(
       {sphere(48, {0.70f, 1.0f, 0.60f, 1.0f}, {0.10f, 0.45f, 0.20f, 1.0f}),
        glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0.6f, 1.9f, -3.0f)), glm::vec3(0.7f))});

@@ -12,11 +12,19 @@ namespace tessera {
 
 enum class ColorFormat { kRGBA8, kRGBA32F };
 
+// How depth is kept (docs/TRADEOFFS.md measures each). kFloat32 stores z as a float: finest
+// near 0, which is where reversed Z (Camera::reversed_z, compare kGreater, clear to 0) puts
+// distant geometry. kUnorm24 and kUnorm16 store round(z * (2^n - 1)) like a fixed-point depth
+// buffer of n bits: evenly spaced steps (held in 32-bit lanes, so they change precision, not
+// memory). Depth reads return z in [0, 1] for every format.
+enum class DepthFormat { kFloat32, kUnorm24, kUnorm16 };
+
 struct FramebufferDesc {
-  uint32_t width = 0;   // 1..kMaxFramebufferSize
-  uint32_t height = 0;  // 1..kMaxFramebufferSize
+  uint32_t width = 0;    // 1..kMaxFramebufferSize
+  uint32_t height = 0;   // 1..kMaxFramebufferSize
   uint32_t samples = 1;  // 1, 2, 4, 8 or 16
   ColorFormat color_format = ColorFormat::kRGBA8;
+  DepthFormat depth_format = DepthFormat::kFloat32;
 };
 
 // Largest total storage of one framebuffer (colour + depth, all samples).
@@ -25,7 +33,7 @@ inline constexpr uint64_t kMaxFramebufferBytes = uint64_t{8} << 30;
 namespace detail {
 struct FramebufferAccess;
 struct FramebufferStorage;  // internal
-}
+}  // namespace detail
 
 class Framebuffer {
  public:
@@ -44,6 +52,7 @@ class Framebuffer {
   uint32_t samples() const noexcept { return desc().samples; }
 
   void clear_color(std::array<float, 4> rgba);
+  // Depth in [0, 1] (stored in the framebuffer's depth format).
   void clear_depth(float depth);
 
   // Resolved colour (box average of the samples), top row first, 4 values per pixel.

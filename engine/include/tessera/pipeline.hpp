@@ -8,7 +8,16 @@
 
 namespace tessera {
 
-enum class CompareOp { kNever, kLess, kEqual, kLessEqual, kGreater, kNotEqual, kGreaterEqual, kAlways };
+enum class CompareOp {
+  kNever,
+  kLess,
+  kEqual,
+  kLessEqual,
+  kGreater,
+  kNotEqual,
+  kGreaterEqual,
+  kAlways
+};
 enum class CullMode { kNone, kFront, kBack };
 enum class FrontFace { kCounterClockwise, kClockwise };  // as seen in NDC, y up
 

@@ -32,6 +32,15 @@ struct RendererOptions {
   Backend backend = Backend::kFast;
   SimdTarget simd = SimdTarget::kAuto;
   uint64_t bin_memory_budget = kDefaultBinMemoryBudget;  // bytes, at least 64 KiB
+  // Count the fast engine's raster work: blocks rejected, accepted and partial, Hi-Z
+  // decisions, samples covered and passed, pixels shaded. Off, those counters stay 0 and the
+  // raster kernels contain no counting code (a separate kernel instance); the triangle and
+  // bin counts are kept either way (a few additions per triangle).
+  bool raster_counters = true;
+  // Hi-Z: per 8x8 block depth bounds that reject a triangle's blocks hidden behind what is
+  // drawn and let fully covered blocks in front skip the depth reads. Off, every block is
+  // tested sample by sample (same image; docs/TRADEOFFS.md measures what it buys).
+  bool hiz = true;
 };
 
 // One draw call's vertex data, all in caller-owned memory that the renderer only reads.

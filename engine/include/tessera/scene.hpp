@@ -26,6 +26,11 @@ struct Camera {
   float ortho_height = 2.0f;    // orthographic: visible height in world units
   float near_plane = 0.1f;
   float far_plane = 100.0f;
+  // Reversed Z: the near plane maps to depth 1 and the far plane to 0. Draw with
+  // CompareOp::kGreater (or kGreaterEqual) into a depth buffer cleared to 0. With float depth
+  // this matches float precision (finest near 0) to perspective depth (finest near the eye),
+  // so precision is nearly even over distance (docs/TRADEOFFS.md).
+  bool reversed_z = false;
 
   glm::mat4 view() const;
   glm::mat4 projection(float aspect, ClipDepth depth = ClipDepth::kZeroToOne) const;

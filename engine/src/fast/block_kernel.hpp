@@ -40,6 +40,8 @@ struct TileContext {
   uint32_t subpixel_bits = 8;
   CompareOp compare = CompareOp::kLess;
   bool hiz = false;  // Hi-Z reject/accept (the compare op is one of <, <=, >, >=)
+  // Fixed-point depth formats store round(z * depth_scale); 0 for float depth.
+  float depth_scale = 0.0f;
   // Sample offsets from the pixel centre, in fixed point and in pixels.
   std::array<int32_t, 16> sample_x{}, sample_y{};
   std::array<float, 16> sample_fx{}, sample_fy{};
@@ -56,15 +58,17 @@ struct TileContext {
 using TriangleKernel = void (*)(const TileContext&, const TriangleSetup&, Counters&);
 
 struct KernelTable {
-  TriangleKernel kernels[kDepthModes][kColorModes][2];  // [depth][colour][multisample]
+  // [depth][colour][multisample][counting]
+  TriangleKernel kernels[kDepthModes][kColorModes][2][2];
 };
 
 // The kernels compiled for a Highway target bit (see simd/dispatch.hpp).
 const KernelTable& kernel_table(int64_t target);
 
 inline TriangleKernel triangle_kernel(const KernelTable& table, DepthMode depth, ColorMode color,
-                                      bool multisample) {
-  return table.kernels[static_cast<int>(depth)][static_cast<int>(color)][multisample ? 1 : 0];
+                                      bool multisample, bool count) {
+  return table.kernels[static_cast<int>(depth)][static_cast<int>(color)][multisample ? 1 : 0]
+                      [count ? 1 : 0];
 }
 
 }  // namespace tessera::fast

@@ -28,7 +28,7 @@ namespace {
 constexpr size_t kMinChunkTriangles = 4096;
 
 struct Chunk {
-  std::vector<TriangleSetup> setups;
+  SetupList setups;
   binning::Bins bins;
   Counters counters;
   size_t begin = 0, end = 0;  // triangles of the draw given to this chunk
@@ -48,16 +48,20 @@ void invalidate_hiz(detail::FramebufferStorage& fb) {
 struct FastRasterizer::State {
   int64_t target = 0;
   uint64_t budget = 0;
+  bool count = true;  // raster counters
+  bool hiz = true;
   const KernelTable* kernels = nullptr;
   SetupRangeFn setup = nullptr;
   std::vector<Chunk> chunks;
   std::vector<Counters> tile_counters;
 };
 
-FastRasterizer::FastRasterizer(int64_t simd_target, uint64_t bin_memory_budget)
+FastRasterizer::FastRasterizer(int64_t simd_target, const RendererOptions& options)
     : state_(std::make_unique<State>()) {
   state_->target = simd_target;
-  state_->budget = bin_memory_budget;
+  state_->budget = options.bin_memory_budget;
+  state_->count = options.raster_counters;
+  state_->hiz = options.hiz;
   state_->kernels = &kernel_table(simd_target);
   state_->setup = setup_kernel(simd_target);
 }
@@ -85,6 +89,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   draw.samples = samples;
   draw.subpixel_bits = bits;
   draw.compare = pipeline.depth_compare;
+  draw.depth_scale = static_cast<float>(detail::depth_scale(fb.desc.depth_format));
   const auto pattern = sample_pattern(samples);
   for (uint32_t s = 0; s < samples; ++s) {
     draw.sample_x[s] = pattern[s].dx * (1 << (bits - 4));
@@ -98,10 +103,11 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   const ColorMode color = !pipeline.color_write                         ? ColorMode::kOff
                           : fb.desc.color_format == ColorFormat::kRGBA8 ? ColorMode::kRGBA8
                                                                         : ColorMode::kRGBA32F;
-  const TriangleKernel kernel = triangle_kernel(*st.kernels, depth, color, samples > 1);
+  const TriangleKernel kernel = triangle_kernel(*st.kernels, depth, color, samples > 1, st.count);
   const CompareOp op = pipeline.depth_compare;
-  draw.hiz = pipeline.depth_test && (op == CompareOp::kLess || op == CompareOp::kLessEqual ||
-                                     op == CompareOp::kGreater || op == CompareOp::kGreaterEqual);
+  draw.hiz = st.hiz && pipeline.depth_test &&
+             (op == CompareOp::kLess || op == CompareOp::kLessEqual || op == CompareOp::kGreater ||
+              op == CompareOp::kGreaterEqual);
   if (pipeline.depth_test && !fb.hiz_valid) invalidate_hiz(fb);
 
   SetupContext ctx;

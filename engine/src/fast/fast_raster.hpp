@@ -15,7 +15,9 @@ namespace tessera::fast {
 
 class FastRasterizer {
  public:
-  FastRasterizer(int64_t simd_target, uint64_t bin_memory_budget);
+  // The options' bin memory budget, raster counters and Hi-Z apply; simd_target is the
+  // resolved Highway target (simd/dispatch.hpp).
+  FastRasterizer(int64_t simd_target, const RendererOptions& options);
   ~FastRasterizer();
   FastRasterizer(FastRasterizer&&) noexcept;
   FastRasterizer& operator=(FastRasterizer&&) noexcept;

@@ -64,11 +64,14 @@ struct TileWriter {
     }
     if (plain_rgba8) return;  // sample 0 not in the mask
     const auto pattern = sample_pattern(fb.desc.samples);
+    const double depth_scale = detail::depth_scale(fb.desc.depth_format);
     bool any = false, wrote_depth = false;
     for (uint32_t s = 0; s < fb.desc.samples; ++s) {
       if (!(mask & (1u << s))) continue;
-      const float depth = std::clamp(
-          depth_in + dz_dx * (pattern[s].dx / 16.0f) + dz_dy * (pattern[s].dy / 16.0f), 0.0f, 1.0f);
+      const float depth = detail::encode_depth(
+          std::clamp(depth_in + dz_dx * (pattern[s].dx / 16.0f) + dz_dy * (pattern[s].dy / 16.0f),
+                     0.0f, 1.0f),
+          depth_scale);
       ++counters.samples_covered;
       const size_t index = fb.sample_index(x, y, s);
       if (pipeline.depth_test) {

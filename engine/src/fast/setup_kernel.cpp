@@ -208,7 +208,7 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
 }  // namespace
 
 void SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, size_t end,
-                std::vector<TriangleSetup>& setups, Counters& counters) {
+                SetupList& setups, Counters& counters) {
   const hn::ScalableTag<double> d;
   const size_t lanes = std::min(hn::Lanes(d), kMaxLanes);
   const bool indexed = !input.indices.empty();

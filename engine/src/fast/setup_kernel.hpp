@@ -14,7 +14,7 @@ namespace tessera::fast {
 // as triangle_setup.cpp's scalar setup of the snapped vertices does (same bits); triangles
 // a clip plane cuts go through setup_triangle.
 using SetupRangeFn = void (*)(const SetupContext& context, const DrawInput& input, size_t begin,
-                              size_t end, std::vector<TriangleSetup>& out, Counters& counters);
+                              size_t end, SetupList& out, Counters& counters);
 
 // The setup kernel compiled for a Highway target bit; targets without one (sizeless-vector
 // targets such as SVE) get the best portable one.

@@ -43,8 +43,8 @@ Snapped snap(double x, double y, double z, double w, const SetupContext& ctx) {
   return s;
 }
 
-void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v,
-                   std::vector<TriangleSetup>& out, Counters& counters) {
+void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList& out,
+                   Counters& counters) {
   int64_t area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
   if (area == 0) {
     ++counters.triangles_culled;
@@ -145,7 +145,7 @@ std::array<double, 4> color_of(const float* attributes, uint32_t count) {
 }  // namespace
 
 void setup_triangle(const SetupContext& ctx, const std::array<const Float4*, 3>& positions,
-                    const std::array<const float*, 3>& attributes, std::vector<TriangleSetup>& out,
+                    const std::array<const float*, 3>& attributes, SetupList& out,
                     Counters& counters) {
   ++counters.triangles_submitted;
   const bool gl_depth = ctx.pipeline->clip_depth == ClipDepth::kNegativeOneToOne;

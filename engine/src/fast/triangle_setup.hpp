@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/src/aligned_allocator.hpp"
 #include "engine/src/clip.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
@@ -43,6 +44,9 @@ struct TriangleSetup {
   std::array<float, 4> qa_dx, qa_dy;
 };
 
+// Setups of one worker's range of a draw (large: see aligned_allocator.hpp).
+using SetupList = detail::AlignedVector<TriangleSetup>;
+
 struct SetupContext {
   uint32_t width = 0;
   uint32_t height = 0;
@@ -58,7 +62,7 @@ struct SetupContext {
 // that survives clipping and culling. The vectorized setup (setup_kernel.hpp) sends here the
 // triangles a clip plane cuts.
 void setup_triangle(const SetupContext& context, const std::array<const Float4*, 3>& positions,
-                    const std::array<const float*, 3>& attributes, std::vector<TriangleSetup>& out,
+                    const std::array<const float*, 3>& attributes, SetupList& out,
                     Counters& counters);
 
 }  // namespace tessera::fast

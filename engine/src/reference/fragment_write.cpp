@@ -37,12 +37,15 @@ void write_fragment(detail::FramebufferStorage& fb, const PipelineState& pipelin
   if (!(f.coverage > 0.0f)) return;
   const uint32_t samples = fb.desc.samples;
   const auto pattern = sample_pattern(samples);
+  const double depth_scale = detail::depth_scale(fb.desc.depth_format);
   bool any = false;
   for (uint32_t s = 0; s < samples; ++s) {
     if (!(f.sample_mask & (1u << s))) continue;
-    const float depth =
+    // The plane at the sample, clamped to [0, 1], stored as the depth format stores it.
+    const float depth = detail::encode_depth(
         std::clamp(f.depth + f.dz_dx * (pattern[s].dx / 16.0f) + f.dz_dy * (pattern[s].dy / 16.0f),
-                   0.0f, 1.0f);
+                   0.0f, 1.0f),
+        depth_scale);
     ++counters.samples_covered;
     const size_t index = fb.sample_index(f.x, f.y, s);
     if (pipeline.depth_test) {

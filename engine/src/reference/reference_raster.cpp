@@ -150,6 +150,7 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
   const uint32_t bits = pipeline.subpixel_bits;
   const int shift = static_cast<int>(bits) - 4;  // 1/16 pixel -> fixed point
   const uint32_t samples = fb.desc.samples;
+  const double depth_scale = detail::depth_scale(fb.desc.depth_format);
   const auto pattern = sample_pattern(samples);
   const bool top_left[3] = {is_top_left(v[1], v[2]), is_top_left(v[2], v[0]),
                             is_top_left(v[0], v[1])};
@@ -187,7 +188,7 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
         const double z = (static_cast<double>(e0) * v[0].z + static_cast<double>(e1) * v[1].z +
                           static_cast<double>(e2) * v[2].z) /
                          a;
-        const float depth = static_cast<float>(std::clamp(z, 0.0, 1.0));
+        const float depth = detail::encode_depth(std::clamp(z, 0.0, 1.0), depth_scale);
         const size_t index =
             fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s);
         if (pipeline.depth_test) {
