@@ -43,6 +43,13 @@ struct Options {
   bool affine = false;
   bool float_color = false;
   std::string cull = "none";
+  bool wireframe = false;
+  bool points = false;
+  float point_size = 2.0f;
+  bool round_points = false;
+  float line_width = 1.0f;
+  std::string line_algorithm = "diamond";
+  bool smooth_lines = false;
   std::string backend = "fast";
   std::vector<float> clear{0.08f, 0.09f, 0.11f, 1.0f};
 };
@@ -84,12 +91,75 @@ void check_camera(const tessera::Camera& cam) {
   }
 }
 
+enum class Mode { kTriangles, kWireframe, kPoints };
+
 // What one frame draws, independent of where it came from.
 struct Job {
   std::optional<tessera::Capture> capture;
   std::optional<tessera::Scene> scene;
   size_t triangles = 0;
+  Mode mode = Mode::kTriangles;
+  std::vector<std::vector<uint32_t>> edges;  // per scene object, for kWireframe
+  tessera::PointState point_state;
+  tessera::LineState line_state;
 };
+
+// Each edge of a triangle list once, as a line list of index pairs.
+std::vector<uint32_t> unique_edges(const std::vector<uint32_t>& triangles) {
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  edges.reserve(triangles.size());
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = triangles[t + k], b = triangles[t + (k + 1) % 3];
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<uint32_t> list;
+  list.reserve(edges.size() * 2);
+  for (const auto& [a, b] : edges)
+    list.insert(list.end(), {a, b});
+  return list;
+}
+
+// Clip-space depth pushed back by this much (times w) in the wireframe's hidden-surface pass,
+// so that an edge wins the depth test against the surface it lies on (a constant polygon
+// offset, as glPolygonOffset's units do).
+constexpr float kWireframeDepthOffset = 2e-4f;
+
+// Wireframe (the lecture's "perspective + hidden line removal"): the triangles fill the depth
+// buffer only, pushed back slightly, then every edge is drawn as a line against it. Points:
+// every vertex, in its unlit colour.
+void draw_scene_primitives(tessera::Renderer& renderer, tessera::Framebuffer& fb,
+                           const tessera::PipelineState& pipeline, const Job& job) {
+  const tessera::Scene& scene = *job.scene;
+  const float aspect = float(fb.width()) / float(fb.height());
+  const glm::mat4 vp = scene.camera.projection(aspect, pipeline.clip_depth) * scene.camera.view();
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const tessera::SceneObject& o = scene.objects[i];
+    std::vector<tessera::Float4> clip = tessera::to_clip_space(o.mesh.positions, vp * o.model);
+    if (job.mode == Mode::kPoints) {
+      std::vector<float> colors;
+      colors.reserve(o.mesh.colors.size() * 4);
+      for (const glm::vec4& c : o.mesh.colors)
+        colors.insert(colors.end(), {c.r, c.g, c.b, c.a});
+      renderer.draw_points(fb, pipeline, job.point_state, {clip, colors, 4, {}});
+      continue;
+    }
+    const std::vector<float> colors =
+        tessera::shade_vertices(o.mesh, o.model, scene.camera.eye, scene.light);
+    if (pipeline.depth_test) {
+      std::vector<tessera::Float4> pushed = clip;
+      for (tessera::Float4& p : pushed)
+        p.z += kWireframeDepthOffset * p.w;
+      tessera::PipelineState depth_only = pipeline;
+      depth_only.color_write = false;
+      renderer.draw(fb, depth_only, {pushed, colors, 4, o.mesh.indices});
+    }
+    renderer.draw_lines(fb, pipeline, job.line_state, {clip, colors, 4, job.edges[i]});
+  }
+}
 
 void draw_job(tessera::Renderer& renderer, tessera::Framebuffer& fb,
               const tessera::PipelineState& pipeline, const Job& job) {
@@ -99,9 +169,25 @@ void draw_job(tessera::Renderer& renderer, tessera::Framebuffer& fb,
     input.attributes = job.capture->colors;
     input.attribute_count = 4;
     renderer.draw(fb, pipeline, input);
+  } else if (job.mode != Mode::kTriangles) {
+    draw_scene_primitives(renderer, fb, pipeline, job);
   } else {
     tessera::draw_scene(renderer, fb, pipeline, *job.scene);
   }
+}
+
+// A mesh, or for --points (and for a PLY file without faces, a point cloud) every vertex.
+tessera::Mesh load_input(const std::string& path, Mode& mode) {
+  if (mode == Mode::kPoints) return tessera::load_point_cloud(path);
+  try {
+    return tessera::load_mesh(path);
+  } catch (const tessera::Error& e) {
+    const bool ply = std::filesystem::path(path).extension() == ".ply" ||
+                     std::filesystem::path(path).extension() == ".PLY";
+    if (!ply || std::string(e.what()).find("no triangles") == std::string::npos) throw;
+  }
+  mode = Mode::kPoints;
+  return tessera::load_point_cloud(path);
 }
 
 bool has_extension(const std::string& path, const char* ext) {
@@ -118,7 +204,19 @@ int run(const Options& o, const CLI::App& app) {
   check_finite("--clear", o.clear);
   check_output_directory("--output", o.output);
   check_output_directory("--depth", o.depth_output);
+  check_finite("--point-size", {o.point_size});
+  check_finite("--line-width", {o.line_width});
+  if (o.wireframe && o.points) bad_argument("--wireframe/--points: choose one");
   Job job;
+  job.mode = o.wireframe ? Mode::kWireframe : o.points ? Mode::kPoints : Mode::kTriangles;
+  job.point_state.size = o.point_size;
+  job.point_state.shape =
+      o.round_points ? tessera::PointShape::kRound : tessera::PointShape::kSquare;
+  job.line_state.width = o.line_width;
+  job.line_state.antialiased = o.smooth_lines;
+  job.line_state.algorithm = o.line_algorithm == "bresenham" ? tessera::LineAlgorithm::kBresenham
+                             : o.line_algorithm == "dda"     ? tessera::LineAlgorithm::kDDA
+                                                             : tessera::LineAlgorithm::kDiamondExit;
   uint32_t width = o.width, height = o.height;
   tessera::PipelineState pipeline;
   const bool is_capture = !o.input.empty() && has_extension(o.input, ".tri");
@@ -127,6 +225,7 @@ int run(const Options& o, const CLI::App& app) {
       throw tessera::Error(tessera::ErrorCode::kInvalidArgument,
                            "--width/--height: a capture renders at its own size");
     }
+    if (job.mode != Mode::kTriangles) bad_argument("--wireframe/--points: not for a capture");
     job.capture = tessera::load_capture(o.input);
     width = job.capture->width;
     height = job.capture->height;
@@ -141,7 +240,7 @@ int run(const Options& o, const CLI::App& app) {
       job.scene = tessera::make_demo_scene();
     } else {
       job.scene.emplace();
-      job.scene->objects.push_back({tessera::load_mesh(o.input), glm::mat4(1.0f)});
+      job.scene->objects.push_back({load_input(o.input, job.mode), glm::mat4(1.0f)});
       job.scene->camera = tessera::frame_bounds(job.scene->bounds(), float(width) / float(height),
                                                 {0.55f, 0.45f, 1.0f}, o.fov);
     }
@@ -162,6 +261,10 @@ int run(const Options& o, const CLI::App& app) {
     }
     cam.reversed_z = o.reversed_z;
     job.triangles = job.scene->triangle_count();
+    if (job.mode == Mode::kWireframe) {
+      for (const tessera::SceneObject& obj : job.scene->objects)
+        job.edges.push_back(unique_edges(obj.mesh.indices));
+    }
   }
   pipeline.depth_test = !o.no_depth;
   if (o.reversed_z) pipeline.depth_compare = tessera::CompareOp::kGreater;
@@ -226,9 +329,12 @@ int run(const Options& o, const CLI::App& app) {
   }
 
   const tessera::Counters& c = renderer.counters();
-  std::printf("%s: %zu triangles, %ux%u, %u sample%s, backend %s, %u thread%s\n",
-              o.input.empty() ? "demo scene" : o.input.c_str(), job.triangles, width, height,
-              o.samples, o.samples == 1 ? "" : "s", o.backend.c_str(), renderer.threads(),
+  const char* mode_name = job.mode == Mode::kWireframe ? " (wireframe)"
+                          : job.mode == Mode::kPoints  ? " (points)"
+                                                       : "";
+  std::printf("%s%s: %zu triangles, %ux%u, %u sample%s, backend %s, %u thread%s\n",
+              o.input.empty() ? "demo scene" : o.input.c_str(), mode_name, job.triangles, width,
+              height, o.samples, o.samples == 1 ? "" : "s", o.backend.c_str(), renderer.threads(),
               renderer.threads() == 1 ? "" : "s");
   std::printf("rasterized %llu, culled %llu, clipped %llu; samples covered %llu, passed %llu\n",
               (unsigned long long)(c.triangles_rasterized / frames),
@@ -247,6 +353,8 @@ int run(const Options& o, const CLI::App& app) {
         per(c.triangles_rasterized), per(c.bin_references), per(c.bin_passes),
         per(c.blocks_rejected), per(c.blocks_accepted), per(c.blocks_partial), per(c.hiz_rejected),
         per(c.hiz_accepted), per(c.samples_covered), per(c.samples_passed), per(c.pixels_shaded));
+    std::printf("per frame: points %llu, line segments %llu, polygons %llu\n",
+                per(c.points_submitted), per(c.lines_submitted), per(c.polygons_submitted));
   }
   std::printf("time %.2f ms, %.3f Mtri/s\n", median, mtri_s);
   if (o.repeat > 0) {
@@ -320,6 +428,21 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"back", "front", "none"}))
       ->capture_default_str();
   app.add_flag("--affine", o.affine, "affine (screen-linear) attribute interpolation");
+  app.add_flag("--wireframe", o.wireframe,
+               "draw triangle edges as lines, hidden lines removed by the depth buffer");
+  app.add_flag("--points", o.points,
+               "draw every vertex as a point (PLY files without faces are drawn so anyway)");
+  app.add_option("--point-size", o.point_size, "point size in pixels")
+      ->check(CLI::Range(1.0f, tessera::kMaxPointSize))
+      ->capture_default_str();
+  app.add_flag("--round-points", o.round_points, "round, antialiased points");
+  app.add_option("--line-width", o.line_width, "wireframe line width in pixels")
+      ->check(CLI::Range(1.0f, tessera::kMaxLineWidth))
+      ->capture_default_str();
+  app.add_option("--line-algorithm", o.line_algorithm, "one-pixel line rule")
+      ->check(CLI::IsMember({"diamond", "bresenham", "dda"}))
+      ->capture_default_str();
+  app.add_flag("--smooth-lines", o.smooth_lines, "antialiased wireframe lines");
   app.add_flag("--float", o.float_color, "float colour buffer (implied by an .exr output)");
   app.add_option("--clear", o.clear, "clear colour r,g,b,a")->delimiter(',')->expected(4);
   bool info = false;

@@ -241,9 +241,68 @@ INSTANTIATE_TEST_SUITE_P(
                       BadRun{"TruncatedCapture", "{dir}/cut.tri", "cut.tri"},
                       BadRun{"MeshIndexOutOfRange", "{dir}/bad.obj", "bad.obj"},
                       BadRun{"SizeGivenForACapture", "{dir}/ok.tri --width 64", "--width"},
+                      BadRun{"WireframeAndPoints", "--wireframe --points", "--wireframe"},
+                      BadRun{"WireframeOfACapture", "{dir}/ok.tri --wireframe", "--wireframe"},
+                      BadRun{"PointSizeZero", "--points --point-size 0", "--point-size"},
+                      BadRun{"LineAlgorithmUnknown", "--line-algorithm wu", "--line-algorithm"},
                       BadRun{"UnwritableDepthPath",
                              "--width 8 --height 8 --depth {dir}/no/such/depth.exr", "depth.exr"}),
     [](const ::testing::TestParamInfo<BadRun>& p) { return std::string(p.param.name); });
+
+// Pixels of an image that differ from the default clear colour (0.08, 0.09, 0.11).
+int drawn_pixels(const Image& image) {
+  int n = 0;
+  for (uint32_t y = 0; y < image.height; ++y) {
+    for (uint32_t x = 0; x < image.width; ++x) {
+      const float* p = image.at(x, y);
+      n += std::abs(p[0] - 0.08f) + std::abs(p[1] - 0.09f) + std::abs(p[2] - 0.11f) > 0.02f;
+    }
+  }
+  return n;
+}
+
+TEST(Cli, WireframeDrawsEdgesWithHiddenLinesRemoved) {
+  TempDir dir;
+  // A cube: seen from a corner, three faces are in front and three behind.
+  write_file(dir / "cube.obj",
+             "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+             "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
+  const std::string common = quoted(dir / "cube.obj") + " --width 96 --height 96 --samples 1 ";
+  auto pixels = [&](const std::string& args, const char* name) {
+    const RunResult r = run_render(dir, common + args + " -o " + quoted(dir / name));
+    EXPECT_TRUE(r.exited && r.exit_code == 0) << r.err;
+    return drawn_pixels(read_image(dir / name));
+  };
+  const int filled = pixels("", "filled.png");
+  const int hidden_removed = pixels("--wireframe", "wire.png");
+  const int all_edges = pixels("--wireframe --no-depth", "all.png");
+  EXPECT_GT(hidden_removed, 50);
+  EXPECT_LT(hidden_removed, all_edges);  // the edges behind the front faces are hidden
+  EXPECT_LT(all_edges, filled);
+  const RunResult r = run_render(dir, common + "--wireframe -o " + quoted(dir / "w.png"));
+  EXPECT_NE(r.out.find("(wireframe)"), std::string::npos) << r.out;
+}
+
+TEST(Cli, PlyPointCloudRendersAsPoints) {
+  TempDir dir;
+  write_file(dir / "cloud.ply",
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+             "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+             "end_header\n0 0 0 255 0 0\n1 0 0 255 0 0\n0 1 0 255 0 0\n");
+  const RunResult r = run_render(dir, quoted(dir / "cloud.ply") +
+                                          " --width 64 --height 64 --samples 1 --point-size 5 -o " +
+                                          quoted(dir / "cloud.png"));
+  ASSERT_TRUE(r.exited);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("(points)"), std::string::npos) << r.out;
+  const Image image = read_image(dir / "cloud.png");
+  int red = 0;
+  for (uint32_t y = 0; y < image.height; ++y) {
+    for (uint32_t x = 0; x < image.width; ++x)
+      red += image.at(x, y)[0] == 1.0f && image.at(x, y)[1] == 0.0f;
+  }
+  EXPECT_EQ(red, 3 * 25);  // three 5x5 squares, apart
+}
 
 TEST(Cli, UnwritableOutputPathIsRejectedNamingIt) {
   TempDir dir;

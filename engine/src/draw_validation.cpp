@@ -54,8 +54,8 @@ bool all_finite(std::span<const Float4> positions) {
 
 }  // namespace
 
-void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
-                   const DrawInput& input) {
+void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
+                       const DrawInput& input) {
   check_enum(pipeline.depth_compare, CompareOp::kAlways, "depth_compare");
   check_enum(pipeline.cull, CullMode::kBack, "cull");
   check_enum(pipeline.front_face, FrontFace::kClockwise, "front_face");
@@ -84,17 +84,7 @@ void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
              std::to_string(vertices) + " vertices with " + std::to_string(input.attribute_count) +
              " attributes need " + std::to_string(vertices * input.attribute_count));
   }
-  if (input.indices.empty()) {
-    if (vertices % 3 != 0) {
-      fail(ErrorCode::kInvalidInput,
-           "a non-indexed triangle list needs a multiple of 3 positions, got " +
-               std::to_string(vertices));
-    }
-  } else {
-    if (input.indices.size() % 3 != 0) {
-      fail(ErrorCode::kInvalidInput, "a triangle list needs a multiple of 3 indices, got " +
-                                         std::to_string(input.indices.size()));
-    }
+  if (!input.indices.empty()) {
     // A branch-free maximum first (it vectorizes); the slow search only names the bad index.
     uint32_t largest = 0;
     for (const uint32_t index : input.indices)
@@ -125,6 +115,96 @@ void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
                                          " is not finite");
     }
   }
+}
+
+void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
+                   const DrawInput& input) {
+  if (input.indices.empty()) {
+    if (input.positions.size() % 3 != 0) {
+      fail(ErrorCode::kInvalidInput,
+           "a non-indexed triangle list needs a multiple of 3 positions, got " +
+               std::to_string(input.positions.size()));
+    }
+  } else if (input.indices.size() % 3 != 0) {
+    fail(ErrorCode::kInvalidInput, "a triangle list needs a multiple of 3 indices, got " +
+                                       std::to_string(input.indices.size()));
+  }
+  validate_vertices(target, pipeline, input);
+}
+
+namespace {
+
+void check_finite_range(float value, float lo, float hi, const std::string& name) {
+  if (!(value >= lo && value <= hi)) {
+    std::ostringstream s;
+    s << name << " " << value << " is out of range (" << lo << ".." << hi << ")";
+    fail(ErrorCode::kInvalidArgument, s.str());
+  }
+}
+
+size_t vertex_count(const DrawInput& input) {
+  return input.indices.empty() ? input.positions.size() : input.indices.size();
+}
+
+template <typename E>
+void check_state_enum(E value, E last, const char* name) {
+  if (static_cast<unsigned>(value) > static_cast<unsigned>(last)) {
+    fail(ErrorCode::kInvalidArgument, std::string(name) + " has the invalid value " +
+                                          std::to_string(static_cast<unsigned>(value)));
+  }
+}
+
+}  // namespace
+
+void validate_points(const Framebuffer& target, const PipelineState& pipeline,
+                     const PointState& state, const DrawInput& input) {
+  check_finite_range(state.size, 1.0f, kMaxPointSize, "point size");
+  check_state_enum(state.shape, PointShape::kRound, "point shape");
+  validate_vertices(target, pipeline, input);
+}
+
+void validate_lines(const Framebuffer& target, const PipelineState& pipeline,
+                    const LineState& state, const DrawInput& input) {
+  check_state_enum(state.topology, LineTopology::kLoop, "line topology");
+  check_state_enum(state.algorithm, LineAlgorithm::kDDA, "line algorithm");
+  check_state_enum(state.join, LineJoin::kBevel, "line join");
+  check_finite_range(state.width, 1.0f, kMaxLineWidth, "line width");
+  check_finite_range(state.miter_limit, 1.0f, 1e6f, "line miter limit");
+  if (state.stipple.factor < 1 || state.stipple.factor > 256) {
+    fail(ErrorCode::kInvalidArgument, "line stipple factor " +
+                                          std::to_string(state.stipple.factor) +
+                                          " is out of range (1..256)");
+  }
+  if (state.topology == LineTopology::kList && vertex_count(input) % 2 != 0) {
+    fail(ErrorCode::kInvalidInput, "a line list needs an even number of vertices, got " +
+                                       std::to_string(vertex_count(input)));
+  }
+  validate_vertices(target, pipeline, input);
+}
+
+void validate_polygon(const Framebuffer& target, const PipelineState& pipeline,
+                      const PolygonState& state, const DrawInput& input,
+                      std::span<const uint32_t> contour_sizes) {
+  check_state_enum(state.fill_rule, FillRule::kNonZero, "polygon fill rule");
+  check_state_enum(state.method, PolygonMethod::kTessellation, "polygon method");
+  if (state.method == PolygonMethod::kTessellation &&
+      vertex_count(input) > kMaxTessellationVertices) {
+    fail(ErrorCode::kInvalidInput, "a polygon of " + std::to_string(vertex_count(input)) +
+                                       " vertices is too large to tessellate (at most " +
+                                       std::to_string(kMaxTessellationVertices) +
+                                       "); draw it with the scanline method");
+  }
+  if (!contour_sizes.empty()) {
+    uint64_t total = 0;
+    for (uint32_t size : contour_sizes)
+      total += size;
+    if (total != vertex_count(input)) {
+      fail(ErrorCode::kInvalidInput, "polygon contour sizes add up to " + std::to_string(total) +
+                                         " vertices, but the draw has " +
+                                         std::to_string(vertex_count(input)));
+    }
+  }
+  validate_vertices(target, pipeline, input);
 }
 
 }  // namespace tessera

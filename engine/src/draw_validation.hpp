@@ -2,8 +2,12 @@
 // bad call leaves the framebuffer untouched and says exactly what was wrong.
 #pragma once
 
+#include <cstdint>
+#include <span>
+
 #include "tessera/framebuffer.hpp"
 #include "tessera/pipeline.hpp"
+#include "tessera/primitives.hpp"
 #include "tessera/renderer.hpp"
 
 namespace tessera {
@@ -13,5 +17,21 @@ namespace tessera {
 // position or attribute that is NaN or infinite.
 void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
                    const DrawInput& input);
+
+// What validate_draw checks except the triangle list's vertex count: the pipeline state,
+// attribute sizes, index range and finite values. Used by every kind of draw.
+void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
+                       const DrawInput& input);
+
+// The draws of points, lines and polygons: their state (Error(kInvalidArgument) naming the
+// field), their vertex count (a line list needs pairs; polygon contour sizes must add up to the
+// vertex count: Error(kInvalidInput)), then validate_vertices.
+void validate_points(const Framebuffer& target, const PipelineState& pipeline,
+                     const PointState& state, const DrawInput& input);
+void validate_lines(const Framebuffer& target, const PipelineState& pipeline,
+                    const LineState& state, const DrawInput& input);
+void validate_polygon(const Framebuffer& target, const PipelineState& pipeline,
+                      const PolygonState& state, const DrawInput& input,
+                      std::span<const uint32_t> contour_sizes);
 
 }  // namespace tessera

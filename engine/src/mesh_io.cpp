@@ -396,7 +396,7 @@ std::string mesh_name(const aiMesh& mesh, unsigned index) {
 // Checks the importer's output before any post-processing step reads it: every array that a
 // count promises is there, every face has indices and each index names a vertex, every
 // position is finite, and at least one face is a triangle or polygon.
-void check_raw_scene(const std::filesystem::path& path, const aiScene& scene) {
+void check_raw_scene(const std::filesystem::path& path, const aiScene& scene, bool need_polygons) {
   if (scene.mNumMeshes > 0 && scene.mMeshes == nullptr)
     bad(path, "the scene's mesh list is missing");
   bool has_polygons = false;
@@ -425,7 +425,7 @@ void check_raw_scene(const std::filesystem::path& path, const aiScene& scene) {
       if (face.mNumIndices >= 3) has_polygons = true;
     }
   }
-  if (!has_polygons) {
+  if (need_polygons && !has_polygons) {
     bad(path, "no triangles to draw (the file holds only points, lines or nothing)");
   }
   for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
@@ -455,7 +455,9 @@ glm::vec4 material_color(const aiScene& scene, unsigned material_index) {
 
 }  // namespace
 
-Mesh load_mesh(const std::filesystem::path& path) {
+namespace {
+
+Mesh load(const std::filesystem::path& path, bool point_cloud) {
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status))
@@ -496,7 +498,54 @@ Mesh load_mesh(const std::filesystem::path& path) {
     return result;
   };
   const aiScene* scene = check(importer.ReadFile(path.string(), 0));
-  check_raw_scene(path, *scene);
+  check_raw_scene(path, *scene, !point_cloud);
+  if (point_cloud) {
+    // No post-processing: Assimp's validation and its node-transform step reject meshes
+    // without faces, which a point cloud is (check_raw_scene has checked what is read here).
+    // Each mesh is taken with the transforms of the nodes that reference it, or untransformed
+    // when no node does (a PLY file's single mesh).
+    Mesh cloud;
+    std::vector<bool> placed(scene->mNumMeshes, false);
+    auto add_mesh = [&](unsigned m, const aiMatrix4x4& transform) {
+      const aiMesh& am = *scene->mMeshes[m];
+      const glm::vec4 color = material_color(*scene, am.mMaterialIndex);
+      for (unsigned v = 0; v < am.mNumVertices; ++v) {
+        const aiVector3D p = transform * am.mVertices[v];
+        if (!finite(p)) {
+          bad(path, "vertex " + std::to_string(v) + " of " + mesh_name(am, m) +
+                        " is not finite after its node transforms: " + describe(p));
+        }
+        cloud.positions.emplace_back(p.x, p.y, p.z);
+        glm::vec4 vc = color;
+        if (am.HasVertexColors(0)) {
+          const aiColor4D& c = am.mColors[0][v];
+          if (std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b) &&
+              std::isfinite(c.a)) {
+            vc = glm::clamp(glm::vec4{c.r, c.g, c.b, c.a}, 0.0f, 1.0f);
+          }
+        }
+        cloud.colors.push_back(vc);
+        cloud.normals.emplace_back(0.0f, 0.0f, 1.0f);
+      }
+    };
+    auto walk = [&](auto&& self, const aiNode* node, const aiMatrix4x4& parent, int depth) -> void {
+      if (node == nullptr || depth > 1000) return;
+      const aiMatrix4x4 transform = parent * node->mTransformation;
+      for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+        if (node->mMeshes[k] >= scene->mNumMeshes) bad(path, "a node names a missing mesh");
+        placed[node->mMeshes[k]] = true;
+        add_mesh(node->mMeshes[k], transform);
+      }
+      for (unsigned k = 0; k < node->mNumChildren; ++k)
+        self(self, node->mChildren[k], transform, depth + 1);
+    };
+    walk(walk, scene->mRootNode, aiMatrix4x4(), 0);
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+      if (!placed[m]) add_mesh(m, aiMatrix4x4());
+    }
+    if (cloud.positions.empty()) bad(path, "no vertices to draw");
+    return cloud;
+  }
 
   // Assimp's own structural validation, then: polygons triangulated, points and lines sorted
   // out, node transforms applied, shared vertices merged.
@@ -559,6 +608,16 @@ Mesh load_mesh(const std::filesystem::path& path) {
   }
   if (!all_have_normals) compute_normals(mesh);
   return mesh;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::filesystem::path& path) {
+  return load(path, false);
+}
+
+Mesh load_point_cloud(const std::filesystem::path& path) {
+  return load(path, true);
 }
 
 void compute_normals(Mesh& mesh) {

@@ -8,7 +8,11 @@
 
 #include "engine/src/draw_validation.hpp"
 #include "engine/src/fast/fast_raster.hpp"
+#include "engine/src/fast/line_raster.hpp"
+#include "engine/src/fast/point_raster.hpp"
+#include "engine/src/fast/polygon_raster.hpp"
 #include "engine/src/framebuffer_storage.hpp"
+#include "engine/src/primitive_draw.hpp"
 #include "engine/src/reference/reference_raster.hpp"
 #include "simd/dispatch.hpp"
 #include "tessera/error.hpp"
@@ -78,7 +82,11 @@ void Renderer::reset_counters() noexcept {
 
 void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input) {
   validate_draw(target, pipeline, input);
-  detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
+  draw_triangles(detail::FramebufferAccess::storage(target), pipeline, input);
+}
+
+void Renderer::draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,
+                              const DrawInput& input) {
   if (impl_->options.backend == Backend::kReference) {
     // The reference writes depth without maintaining the fast engine's Hi-Z bounds.
     if (pipeline.depth_test && pipeline.depth_write) storage.hiz_valid = false;
@@ -86,6 +94,59 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
   } else {
     impl_->fast.draw(impl_->arena, storage, pipeline, input, impl_->counters);
   }
+}
+
+void Renderer::draw_points(Framebuffer& target, const PipelineState& pipeline,
+                           const PointState& state, const DrawInput& input) {
+  validate_points(target, pipeline, state, input);
+  detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
+  tessera::draw_points(
+      storage, pipeline, state, input,
+      [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+      [&](std::span<const WindowPoint> points, float size) {
+        if (impl_->options.backend == Backend::kReference) {
+          draw_reference_round_points(storage, pipeline, points, size, impl_->counters);
+        } else {
+          fast::draw_round_points(impl_->arena, storage, pipeline, points, size, impl_->counters);
+        }
+      },
+      impl_->counters);
+}
+
+void Renderer::draw_lines(Framebuffer& target, const PipelineState& pipeline,
+                          const LineState& state, const DrawInput& input) {
+  validate_lines(target, pipeline, state, input);
+  detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
+  tessera::draw_lines(
+      storage, pipeline, state, input,
+      [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+      [&](const LineState& s, std::span<const WindowSegment> segments) {
+        if (impl_->options.backend == Backend::kReference) {
+          draw_reference_thin_lines(storage, pipeline, s, segments, impl_->counters);
+        } else {
+          fast::draw_thin_lines(impl_->arena, storage, pipeline, s, segments, impl_->counters);
+        }
+      },
+      impl_->counters);
+}
+
+void Renderer::draw_polygon(Framebuffer& target, const PipelineState& pipeline,
+                            const PolygonState& state, const DrawInput& input,
+                            std::span<const uint32_t> contour_sizes) {
+  validate_polygon(target, pipeline, state, input, contour_sizes);
+  detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
+  tessera::draw_polygon(
+      storage, pipeline, state, input, contour_sizes,
+      [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+      [&](const std::vector<std::vector<WindowPoint>>& contours, FillRule rule) {
+        if (impl_->options.backend == Backend::kReference) {
+          draw_reference_scanline_polygon(storage, pipeline, contours, rule, impl_->counters);
+        } else {
+          fast::draw_scanline_polygon(impl_->arena, storage, pipeline, contours, rule,
+                                      impl_->counters);
+        }
+      },
+      impl_->counters);
 }
 
 }  // namespace tessera

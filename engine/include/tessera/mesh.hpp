@@ -35,6 +35,13 @@ struct Bounds {
 // to during the import, is one per process.
 Mesh load_mesh(const std::filesystem::path& path);
 
+// Loads every vertex of every mesh in the file (of triangles, lines or points alike, e.g. a
+// PLY point cloud with no faces), with node transforms applied, as a point cloud: positions
+// and colours as load_mesh takes them, normals (0, 0, 1), no indices. Same checks and errors
+// as load_mesh, except that a file without triangles is fine; one without vertices is
+// Error(kInvalidInput).
+Mesh load_point_cloud(const std::filesystem::path& path);
+
 // Smooth vertex normals from the triangles (area-weighted).
 void compute_normals(Mesh& mesh);
 

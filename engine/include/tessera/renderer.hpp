@@ -1,4 +1,5 @@
-// The renderer: owns its threads (a oneTBB task_arena) and draws triangles into framebuffers.
+// The renderer: owns its threads (a oneTBB task_arena) and draws triangles, points, lines and
+// polygons into framebuffers.
 #pragma once
 
 #include <cstdint>
@@ -7,6 +8,7 @@
 
 #include "tessera/framebuffer.hpp"
 #include "tessera/pipeline.hpp"
+#include "tessera/primitives.hpp"
 #include "tessera/types.hpp"
 
 namespace tessera {
@@ -78,6 +80,12 @@ struct Counters {
   uint64_t samples_covered = 0;  // inside a triangle and tested (not in Hi-Z-rejected blocks)
   uint64_t samples_passed = 0;   // covered and passed the depth test
   uint64_t pixels_shaded = 0;    // pixels whose colour was computed (once per pixel)
+  // Points, line segments and polygons submitted to draw_points, draw_lines, draw_polygon.
+  // Those drawn as triangles (square points, wide lines, tessellated polygons) also count in
+  // the triangle counters.
+  uint64_t points_submitted = 0;
+  uint64_t lines_submitted = 0;
+  uint64_t polygons_submitted = 0;
 };
 
 class Renderer {
@@ -98,11 +106,28 @@ class Renderer {
   // Error(kInvalidArgument / kInvalidInput) the framebuffer is left as it was.
   void draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input);
 
+  // Draws one point per vertex (per index when there are indices), rules in primitives.hpp.
+  // Validated like draw(); a bad point state is an Error(kInvalidArgument).
+  void draw_points(Framebuffer& target, const PipelineState& pipeline, const PointState& state,
+                   const DrawInput& input);
+  // Draws lines of the state's topology through the vertices (or indices). A line list needs
+  // an even number of them.
+  void draw_lines(Framebuffer& target, const PipelineState& pipeline, const LineState& state,
+                  const DrawInput& input);
+  // Draws one polygon: its vertices (or indices) in order, cut into contours (outlines and
+  // holes) of the given sizes, which must add up to the vertex count; empty means a single
+  // contour. Flat-shaded with the first vertex's colour, depth from the polygon's plane; not
+  // culled.
+  void draw_polygon(Framebuffer& target, const PipelineState& pipeline, const PolygonState& state,
+                    const DrawInput& input, std::span<const uint32_t> contour_sizes = {});
+
   const Counters& counters() const noexcept;
   void reset_counters() noexcept;
 
  private:
   struct Impl;
+  void draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,
+                      const DrawInput& input);
   std::unique_ptr<Impl> impl_;
 };
 

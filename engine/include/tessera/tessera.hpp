@@ -8,6 +8,7 @@
 #include "tessera/image_io.hpp"
 #include "tessera/mesh.hpp"
 #include "tessera/pipeline.hpp"
+#include "tessera/primitives.hpp"
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
 #include "tessera/types.hpp"

@@ -1,0 +1,160 @@
+// Square points, wide-line rectangles, dashes and joins as triangles (primitive_triangles.hpp).
+// Joins follow the SVG stroke model (miter with a miter limit, round, bevel); the stipple cuts
+// the rectangle at whole major-axis pixels, as glLineStipple counts fragments.
+#include "engine/src/primitive_triangles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "engine/src/reference/reference_lines.hpp"
+
+namespace tessera {
+
+void TriangleList::add_window(const WindowPoint& a, const WindowPoint& b, const WindowPoint& c,
+                              uint32_t width, uint32_t height) {
+  for (const WindowPoint* p : {&a, &b, &c}) {
+    const double w = 1.0 / p->inv_w;
+    positions.push_back({static_cast<float>((2.0 * p->x / width - 1.0) * w),
+                         static_cast<float>((1.0 - 2.0 * p->y / height) * w),
+                         static_cast<float>(p->z * w), static_cast<float>(w)});
+    colors.insert(colors.end(), p->color.begin(), p->color.end());
+  }
+}
+
+PipelineState triangle_pipeline(const PipelineState& pipeline) {
+  PipelineState p = pipeline;
+  p.cull = CullMode::kNone;
+  p.clip_depth = ClipDepth::kZeroToOne;
+  return p;
+}
+
+namespace {
+
+WindowPoint offset(const WindowPoint& p, double dx, double dy) {
+  WindowPoint r = p;
+  r.x += dx;
+  r.y += dy;
+  return r;
+}
+
+// The point at screen parameter t of a segment: position and depth linear in the window, 1/w
+// linear in the window, colour perspective-correct (c/w linear).
+WindowPoint along(const WindowSegment& s, double t) {
+  if (t <= 0.0) return s.a;
+  if (t >= 1.0) return s.b;
+  WindowPoint r;
+  r.x = s.a.x + t * (s.b.x - s.a.x);
+  r.y = s.a.y + t * (s.b.y - s.a.y);
+  r.z = s.a.z + t * (s.b.z - s.a.z);
+  r.inv_w = s.a.inv_w + t * (s.b.inv_w - s.a.inv_w);
+  for (int c = 0; c < 4; ++c) {
+    r.color[c] = static_cast<float>(
+        (s.a.color[c] * s.a.inv_w + t * (s.b.color[c] * s.b.inv_w - s.a.color[c] * s.a.inv_w)) /
+        r.inv_w);
+  }
+  return r;
+}
+
+}  // namespace
+
+TriangleList square_points(std::span<const WindowPoint> points, float size, uint32_t width,
+                           uint32_t height) {
+  TriangleList list;
+  const double h = 0.5 * size;
+  for (WindowPoint p : points) {
+    p.inv_w = 1.0;  // a point's colour and depth are constant: no perspective needed
+    const WindowPoint tl = offset(p, -h, -h), tr = offset(p, h, -h);
+    const WindowPoint bl = offset(p, -h, h), br = offset(p, h, h);
+    list.add_window(tl, tr, br, width, height);
+    list.add_window(tl, br, bl, width, height);
+  }
+  return list;
+}
+
+TriangleList wide_lines(std::span<const WindowSegment> segments, const LineState& state,
+                        uint32_t width, uint32_t height) {
+  TriangleList list;
+  const double half = 0.5 * state.width;
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const WindowSegment& s = segments[i];
+    const double dx = s.b.x - s.a.x, dy = s.b.y - s.a.y;
+    const double length = std::sqrt(dx * dx + dy * dy);
+    if (!(length > 0.0)) continue;
+    const double nx = -dy / length * half, ny = dx / length * half;
+    auto rectangle = [&](double t0, double t1) {
+      const WindowPoint p = along(s, t0), q = along(s, t1);
+      const WindowPoint p0 = offset(p, nx, ny), p1 = offset(p, -nx, -ny);
+      const WindowPoint q0 = offset(q, nx, ny), q1 = offset(q, -nx, -ny);
+      list.add_window(p0, q0, q1, width, height);
+      list.add_window(p0, q1, p1, width, height);
+    };
+    if (state.stipple.pattern == 0xFFFF) {
+      rectangle(0.0, 1.0);
+    } else {
+      // Fragment k of the dash pattern covers major-axis distance [k, k + 1) from a.
+      const double major = std::max(std::abs(dx), std::abs(dy));
+      const auto steps = static_cast<uint32_t>(std::ceil(major));
+      uint32_t k = 0;
+      while (k < steps) {
+        if (!reference::stipple_on(state.stipple, s.stipple_base + k)) {
+          ++k;
+          continue;
+        }
+        uint32_t end = k + 1;
+        while (end < steps && reference::stipple_on(state.stipple, s.stipple_base + end))
+          ++end;
+        rectangle(k / major, std::min(1.0, end / major));
+        k = end;
+      }
+    }
+
+    if (!s.joins_next || state.join == LineJoin::kNone) continue;
+    const WindowSegment& n = segments[(i + 1) % segments.size()];
+    const double ex = n.b.x - n.a.x, ey = n.b.y - n.a.y;
+    const double next_length = std::sqrt(ex * ex + ey * ey);
+    if (!(next_length > 0.0)) continue;
+    const double u1x = dx / length, u1y = dy / length, u2x = ex / next_length,
+                 u2y = ey / next_length;
+    const double cross = u1x * u2y - u1y * u2x, dot = u1x * u2x + u1y * u2y;
+    if (cross == 0.0) continue;  // straight on, or straight back: no wedge to fill
+    const double side = cross > 0.0 ? -1.0 : 1.0;  // the outer side of the turn
+    const WindowPoint& p = s.b;
+    const WindowPoint c1 = offset(p, side * -u1y * half, side * u1x * half);
+    const WindowPoint c2 = offset(p, side * -u2y * half, side * u2x * half);
+    switch (state.join) {
+      case LineJoin::kBevel:
+        list.add_window(p, c1, c2, width, height);
+        break;
+      case LineJoin::kMiter: {
+        // The outer edges meet at distance half / cos(theta / 2) from p along the bisector.
+        const double ratio = std::sqrt(2.0 / (1.0 + dot));
+        if (!(ratio <= state.miter_limit)) {
+          list.add_window(p, c1, c2, width, height);
+          break;
+        }
+        const double bx = (c1.x - p.x) + (c2.x - p.x), by = (c1.y - p.y) + (c2.y - p.y);
+        const double bl = std::sqrt(bx * bx + by * by);
+        const WindowPoint m = offset(p, bx / bl * half * ratio, by / bl * half * ratio);
+        list.add_window(p, c1, m, width, height);
+        list.add_window(p, m, c2, width, height);
+        break;
+      }
+      case LineJoin::kRound: {
+        const int sides = std::clamp(static_cast<int>(std::ceil(std::numbers::pi * half)), 8, 128);
+        for (int k = 0; k < sides; ++k) {
+          const double a0 = 2.0 * std::numbers::pi * k / sides;
+          const double a1 = 2.0 * std::numbers::pi * (k + 1) / sides;
+          list.add_window(p, offset(p, half * std::cos(a0), half * std::sin(a0)),
+                          offset(p, half * std::cos(a1), half * std::sin(a1)), width, height);
+        }
+        break;
+      }
+      case LineJoin::kNone:
+        break;
+    }
+  }
+  return list;
+}
+
+}  // namespace tessera

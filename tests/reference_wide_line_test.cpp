@@ -1,0 +1,93 @@
+// Wide lines (primitives.hpp): rectangles of the line's width point-sampled with the
+// triangles' fill rule, cut into dashes by the stipple, and the joins of strips (miter with
+// its limit, round, bevel, none), with hand-counted pixels.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "tests/primitive_test_support.hpp"
+
+namespace tessera::test {
+namespace {
+
+PixelSet wide(const std::vector<WindowVertex>& points, LineState state, uint32_t size = 16) {
+  const Viewport vp{size, size};
+  return touched(size, size, [&](Renderer& r, Framebuffer& fb) {
+    Vertices v(vp, {});
+    for (const WindowVertex& p : points)
+      v.add(vp, p);
+    r.draw_lines(fb, touch_pipeline(), state, v.input());
+  });
+}
+
+PixelSet rect(int x0, int y0, int x1, int y1) {  // inclusive
+  PixelSet s;
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x)
+      s.insert({x, y});
+  }
+  return s;
+}
+
+PixelSet operator|(PixelSet a, const PixelSet& b) {
+  a.insert(b.begin(), b.end());
+  return a;
+}
+
+TEST(ReferenceWideLines, WideLinesAreRectanglesSampledWithTheFillRule) {
+  LineState s;
+  s.width = 3;
+  // y in [6.5, 9.5): the top edge holds row 6's centres (inside), the bottom edge row 9's
+  // (outside); x in [2, 12): columns 2..11.
+  EXPECT_EQ(wide({{2, 8}, {12, 8}}, s), rect(2, 6, 11, 8));
+  s.width = 2;
+  EXPECT_EQ(wide({{5, 2}, {5, 10}}, s), rect(4, 2, 5, 9));
+}
+
+TEST(ReferenceWideLines, JoinsFillTheOuterCornerOfAStrip) {
+  // Width 4, right along y = 10 then up along x = 10: the rectangles leave the outer corner
+  // square [10, 12] x [10, 12] (pixels 10..11) open.
+  const std::vector<WindowVertex> strip = {{2, 10}, {10, 10}, {10, 2}};
+  const PixelSet legs = rect(2, 8, 9, 11) | rect(8, 2, 11, 9);
+  LineState s;
+  s.width = 4;
+  s.topology = LineTopology::kStrip;
+  s.join = LineJoin::kNone;
+  EXPECT_EQ(wide(strip, s), legs);
+  // Miter: the whole corner square (the miter of a right angle is sqrt(2) half-widths).
+  s.join = LineJoin::kMiter;
+  EXPECT_EQ(wide(strip, s), legs | rect(10, 10, 11, 11));
+  // Bevel: the triangle (10, 10), (12, 10), (10, 12); the centres (11.5, 10.5) and
+  // (10.5, 11.5) lie on its hypotenuse, a right edge, so only (10, 10) is added.
+  s.join = LineJoin::kBevel;
+  EXPECT_EQ(wide(strip, s), legs | PixelSet({{10, 10}}));
+  // Round: a disc of radius 2 at (10, 10) holds the centres at 0.71 and 1.58 from it, not the
+  // one at 2.12.
+  s.join = LineJoin::kRound;
+  EXPECT_EQ(wide(strip, s), legs | PixelSet({{10, 10}, {11, 10}, {10, 11}}));
+  // A miter longer than the limit falls back to a bevel.
+  s.join = LineJoin::kMiter;
+  s.miter_limit = 1.4f;
+  EXPECT_EQ(wide(strip, s), legs | PixelSet({{10, 10}}));
+  // A loop joins its last segment to the first as well.
+  s.topology = LineTopology::kLoop;
+  s.miter_limit = 4;
+  // Its four sides span [1, 14] around a hole [5, 10], and the mitred corners close the
+  // frame: pixels 1..13 except the hole's 5..9.
+  PixelSet frame = rect(1, 1, 13, 13);
+  for (const Pixel& p : rect(5, 5, 9, 9))
+    frame.erase(p);
+  const PixelSet loop = wide({{3, 3}, {12, 3}, {12, 12}, {3, 12}}, s);
+  EXPECT_EQ(loop, frame) << describe(loop);
+}
+
+TEST(ReferenceWideLines, StippleCutsWideLinesIntoDashes) {
+  LineState s;
+  s.width = 3;
+  s.stipple = {0x00FF, 1};
+  const PixelSet dashes = wide({{0, 8}, {32, 8}}, s, 32);
+  EXPECT_EQ(dashes, rect(0, 6, 7, 8) | rect(16, 6, 23, 8));
+}
+
+}  // namespace
+}  // namespace tessera::test
