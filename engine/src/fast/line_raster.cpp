@@ -25,7 +25,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "binning/bins.hpp"
+#include "binning/tile_lists.hpp"
 #include "engine/src/fast/fragment_writer.hpp"
 #include "engine/src/sample_positions.hpp"
 
@@ -311,7 +311,7 @@ bool near_line(const WindowSegment& seg, double margin, double x0, double y0, do
 
 struct Chunk {
   std::vector<LineSetup> setups;
-  binning::Bins bins;
+  binning::TileLists bins;
 };
 
 // Segments per chunk below which splitting the setup does not pay.

@@ -11,7 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "binning/bins.hpp"
+#include "binning/tile_lists.hpp"
 #include "engine/src/fast/fragment_writer.hpp"
 
 namespace tessera::fast {
@@ -38,7 +38,7 @@ void draw_round_points(tbb::task_arena& arena, detail::FramebufferStorage& fb,
   const size_t chunk_count = std::clamp<size_t>(points.size() / kMinChunkPoints, 1,
                                                 threads <= 1 ? 1 : size_t{4} * threads);
   std::vector<std::vector<PointSetup>> setups(chunk_count);
-  std::vector<binning::Bins> bins(chunk_count);
+  std::vector<binning::TileLists> bins(chunk_count);
 
   arena.execute([&] {
     tbb::parallel_for(size_t{0}, chunk_count, [&](size_t c) {
@@ -97,7 +97,7 @@ void draw_round_points(tbb::task_arena& arena, detail::FramebufferStorage& fb,
                         }
                       });
   });
-  for (const binning::Bins& b : bins)
+  for (const binning::TileLists& b : bins)
     counters.bin_references += b.references();
   ++counters.bin_passes;
   for (const Counters& c : tile_counters) {
