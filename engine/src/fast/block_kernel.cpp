@@ -253,8 +253,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
 
     // The depth plane's change from the block's first pixel, shared by every sample (the
     // same sums plane_at forms, so the bits do not change).
-    const auto z_rel =
-        hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
+    const auto z_rel = hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
     auto pass_bits = hn::Zero(du);  // bit s: sample s passed
     for (uint32_t s = 0; s < samples; ++s) {
       auto cov = inside;
