@@ -2,7 +2,8 @@
 # Peer comparison: times Tessera's fast engine (tessera-render --backend fast) and Mesa's
 # llvmpipe (tessera_llvmpipe_bench, OSMesa) on the same TRI1 captures, interleaving the two
 # per workload and thread count so both see the same machine state, and prints a Markdown
-# table. Only the ratios within one run mean something on a shared machine.
+# table. Only the ratios within one run mean something on a shared machine. Tessera runs with
+# its raster counters off (--no-counters), as llvmpipe counts nothing.
 #
 # usage: scripts/compare-llvmpipe.sh [WORKLOAD...]   (default: the six standard workloads)
 # environment: BUILD_DIR (default build/release) holds samples/tessera-render and
@@ -48,7 +49,7 @@ for w in "${workloads[@]}"; do
   for t in $threads_list; do
     echo "compare-llvmpipe: $w, $s sample(s), $t thread(s)" >&2
     # A failed run leaves its row n/a; its messages are in the log.
-    "$render" "$capture" --backend fast --samples "$s" --threads "$t" --repeat "$frames" \
+    "$render" "$capture" --backend fast --no-counters --samples "$s" --threads "$t" --repeat "$frames" \
       --clear 0,0,0,1 -o "$work/tessera.png" >"$work/tessera.out" 2>&1 || true
     "$peer" "$capture" --threads "$t" --samples "$s" --frames "$frames" >"$work/peer.out" 2>&1 ||
       true
