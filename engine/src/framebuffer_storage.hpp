@@ -13,6 +13,7 @@
 #include "binning/tile_grid.hpp"
 #include "engine/src/aligned_allocator.hpp"
 #include "tessera/framebuffer.hpp"
+#include "tessera/pipeline.hpp"
 
 namespace tessera {
 
@@ -53,6 +54,30 @@ inline float encode_depth(double z, double scale) {
 }
 inline float decode_depth(float stored, double scale) {
   return scale > 0.0 ? static_cast<float>(stored / scale) : stored;
+}
+
+// The depth test of one sample: `incoming` against the `stored` value under `op` (both in the
+// framebuffer's encoding, which keeps their order). Shared by every scalar writer.
+inline bool depth_passes(CompareOp op, float incoming, float stored) {
+  switch (op) {
+    case CompareOp::kNever:
+      return false;
+    case CompareOp::kLess:
+      return incoming < stored;
+    case CompareOp::kEqual:
+      return incoming == stored;
+    case CompareOp::kLessEqual:
+      return incoming <= stored;
+    case CompareOp::kGreater:
+      return incoming > stored;
+    case CompareOp::kNotEqual:
+      return incoming != stored;
+    case CompareOp::kGreaterEqual:
+      return incoming >= stored;
+    case CompareOp::kAlways:
+      return true;
+  }
+  return false;
 }
 
 struct FramebufferStorage {

@@ -16,28 +16,6 @@
 
 namespace tessera::fast {
 
-inline bool depth_passes(CompareOp op, float incoming, float stored) {
-  switch (op) {
-    case CompareOp::kNever:
-      return false;
-    case CompareOp::kLess:
-      return incoming < stored;
-    case CompareOp::kEqual:
-      return incoming == stored;
-    case CompareOp::kLessEqual:
-      return incoming <= stored;
-    case CompareOp::kGreater:
-      return incoming > stored;
-    case CompareOp::kNotEqual:
-      return incoming != stored;
-    case CompareOp::kGreaterEqual:
-      return incoming >= stored;
-    case CompareOp::kAlways:
-      return true;
-  }
-  return false;
-}
-
 // One tile's writer: counters are the tile's own, so tiles write in parallel.
 struct TileWriter {
   detail::FramebufferStorage& fb;
@@ -75,7 +53,7 @@ struct TileWriter {
       ++counters.samples_covered;
       const size_t index = fb.sample_index(x, y, s);
       if (pipeline.depth_test) {
-        if (!depth_passes(pipeline.depth_compare, depth, fb.depth[index])) continue;
+        if (!detail::depth_passes(pipeline.depth_compare, depth, fb.depth[index])) continue;
         if (pipeline.depth_write) {
           fb.depth[index] = depth;
           wrote_depth = true;

@@ -10,28 +10,6 @@
 
 namespace tessera::reference {
 
-bool depth_passes(CompareOp op, float incoming, float stored) {
-  switch (op) {
-    case CompareOp::kNever:
-      return false;
-    case CompareOp::kLess:
-      return incoming < stored;
-    case CompareOp::kEqual:
-      return incoming == stored;
-    case CompareOp::kLessEqual:
-      return incoming <= stored;
-    case CompareOp::kGreater:
-      return incoming > stored;
-    case CompareOp::kNotEqual:
-      return incoming != stored;
-    case CompareOp::kGreaterEqual:
-      return incoming >= stored;
-    case CompareOp::kAlways:
-      return true;
-  }
-  return false;
-}
-
 void write_fragment(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                     const Fragment& f, bool blend, Counters& counters) {
   if (!(f.coverage > 0.0f)) return;
@@ -49,7 +27,7 @@ void write_fragment(detail::FramebufferStorage& fb, const PipelineState& pipelin
     ++counters.samples_covered;
     const size_t index = fb.sample_index(f.x, f.y, s);
     if (pipeline.depth_test) {
-      if (!depth_passes(pipeline.depth_compare, depth, fb.depth[index])) continue;
+      if (!detail::depth_passes(pipeline.depth_compare, depth, fb.depth[index])) continue;
       if (pipeline.depth_write) fb.depth[index] = depth;
     }
     ++counters.samples_passed;

@@ -14,9 +14,6 @@
 
 namespace tessera::reference {
 
-// The same comparison the triangle rasterizers make.
-bool depth_passes(CompareOp op, float incoming, float stored);
-
 struct Fragment {
   uint32_t x = 0, y = 0;       // pixel, inside the framebuffer
   float depth = 0;             // z/w in [0, 1] at the pixel centre

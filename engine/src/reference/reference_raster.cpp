@@ -66,28 +66,6 @@ bool inside_edge(int64_t e, bool top_left) {
   return e > 0 || (e == 0 && top_left);
 }
 
-bool depth_test_passes(CompareOp op, float incoming, float stored) {
-  switch (op) {
-    case CompareOp::kNever:
-      return false;
-    case CompareOp::kLess:
-      return incoming < stored;
-    case CompareOp::kEqual:
-      return incoming == stored;
-    case CompareOp::kLessEqual:
-      return incoming <= stored;
-    case CompareOp::kGreater:
-      return incoming > stored;
-    case CompareOp::kNotEqual:
-      return incoming != stored;
-    case CompareOp::kGreaterEqual:
-      return incoming >= stored;
-    case CompareOp::kAlways:
-      return true;
-  }
-  return false;
-}
-
 // Colour (attributes 0..3, missing components (0, 0, 0, 1)) at the fixed-point point (px, py)
 // from the triangle's screen-space barycentrics, perspective-correct or affine. Returns false
 // when the plane of 1/w is not positive there (a point beyond the triangle's horizon).
@@ -192,7 +170,7 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
         const size_t index =
             fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s);
         if (pipeline.depth_test) {
-          if (!depth_test_passes(pipeline.depth_compare, depth, fb.depth[index])) continue;
+          if (!detail::depth_passes(pipeline.depth_compare, depth, fb.depth[index])) continue;
           if (pipeline.depth_write) fb.depth[index] = depth;
         }
         ++counters.samples_passed;
