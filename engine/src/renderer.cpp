@@ -124,7 +124,8 @@ void Renderer::draw_lines(Framebuffer& target, const PipelineState& pipeline,
         if (impl_->options.backend == Backend::kReference) {
           draw_reference_thin_lines(storage, pipeline, s, segments, impl_->counters);
         } else {
-          fast::draw_thin_lines(impl_->arena, storage, pipeline, s, segments, impl_->counters);
+          fast::draw_thin_lines(impl_->arena, impl_->fast.simd_target(), storage, pipeline, s,
+                                segments, impl_->counters);
         }
       },
       impl_->counters);

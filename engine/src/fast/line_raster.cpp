@@ -19,7 +19,9 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -27,6 +29,7 @@
 
 #include "binning/tile_lists.hpp"
 #include "engine/src/fast/fragment_writer.hpp"
+#include "engine/src/fast/line_kernel.hpp"
 #include "engine/src/sample_positions.hpp"
 
 namespace tessera::fast {
@@ -89,51 +92,66 @@ int64_t floor_div(int64_t a, int64_t b) {  // b > 0
   return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
 
+// The inner columns of a segment (rows, for a y-major line) as a division stepped exactly:
+// column i in [i_lo, i_hi] has its pixel on row base + sign q(i) - (tie && r(i) == 0), q and r
+// the floor quotient and remainder of num + (i - i_lo) step by den > 0; rows outside
+// [j_lo, j_hi] (the box) are not drawn. Pixel (i, j) is (x, y) for x-major lines, else (y, x);
+// its stipple counter is |i - start|.
+struct ColumnRun {
+  int64_t i_lo, i_hi;
+  int64_t num, step, den;
+  int64_t base, sign;
+  bool tie;
+  int64_t j_lo, j_hi;
+  bool x_major;
+  int64_t start;
+};
+
+// q(i) and r(i) of a run, from column to column: the carry is taken without a branch.
+struct DivisionStepper {
+  int64_t q, r, step_q, step_r, den;
+  explicit DivisionStepper(const ColumnRun& run)
+      : q(floor_div(run.num, run.den)),
+        r(run.num - q * run.den),
+        step_q(floor_div(run.step, run.den)),
+        step_r(run.step - step_q * run.den),
+        den(run.den) {}
+  void next() {
+    const int64_t carried = r + step_r, wrapped = carried - den;
+    q += step_q + static_cast<int64_t>(wrapped >= 0);
+    r = wrapped >= 0 ? wrapped : carried;
+  }
+};
+
+// Visits the drawn pixels of a run one by one.
 template <typename Visit>
-void diamond_exit(const WindowSegment& seg, uint32_t bits, const Box& box, Visit visit) {
+void for_each_pixel(const ColumnRun& run, Visit visit) {
+  DivisionStepper d(run);
+  for (int64_t i = run.i_lo; i <= run.i_hi; ++i, d.next()) {
+    const int64_t j = run.base + run.sign * d.q - static_cast<int64_t>(run.tie & (d.r == 0));
+    if (j >= run.j_lo && j <= run.j_hi) {
+      visit(run.x_major ? i : j, run.x_major ? j : i,
+            static_cast<uint32_t>(std::abs(i - run.start)));
+    }
+  }
+}
+
+template <typename Visit, typename VisitRun>
+void diamond_exit(const WindowSegment& seg, uint32_t bits, const Box& box, Visit visit,
+                  VisitRun visit_run) {
   const int64_t one = int64_t{1} << bits, h = one / 2;
   const int64_t ax = seg.a.fx, ay = seg.a.fy, dx = seg.b.fx - ax, dy = seg.b.fy - ay;
   const bool x_major = std::abs(dx) >= std::abs(dy);
   const int64_t a_major = x_major ? ax : ay, a_minor = x_major ? ay : ax;
   const int64_t d_major = x_major ? dx : dy, d_minor = x_major ? dy : dx;
-  const int64_t dir = d_major > 0 ? 1 : -1;
   const int64_t start = a_major >> bits, end = (a_major + d_major) >> bits;
-  // Visit the columns of the box in the direction of travel, within one of the end pixels.
-  const int64_t lo = std::max(x_major ? box.x0 : box.y0, std::min(start, end) - 1);
-  const int64_t hi = std::min(x_major ? box.x1 : box.y1, std::max(start, end) + 1);
+  // Visit the columns of the box within one of the end pixels.
+  const int64_t first = std::min(start, end), last = std::max(start, end);
+  const int64_t lo = std::max(x_major ? box.x0 : box.y0, first - 1);
+  const int64_t hi = std::min(x_major ? box.x1 : box.y1, last + 1);
   if (lo > hi) return;
   const int64_t minor_lo = x_major ? box.y0 : box.x0, minor_hi = x_major ? box.y1 : box.x1;
-  // Minor coordinate at a column centre: (a_minor D + (c - a_major) d_minor) / D, D > 0.
-  const int64_t D = std::abs(d_major), sD = dir;  // sD * d_major = D > 0
-  const bool tie_to_lower = x_major && d_minor * d_major > 0;
-  // Inner columns step the division exactly: a column further along the line (dir) adds
-  // sD * dir * one * d_minor = one * d_minor to the numerator, carried into the quotient q and
-  // the remainder r (0 <= r < D one).
-  const int64_t denominator = D * one, step = d_minor * one;
-  const int64_t step_q = floor_div(step, denominator), step_r = step - step_q * denominator;
-  bool stepping = false;
-  int64_t q = 0, r = 0;
-  for (int64_t i = dir > 0 ? lo : hi; dir > 0 ? i <= hi : i >= lo; i += dir) {
-    const uint32_t s = static_cast<uint32_t>(std::abs(i - start));
-    if (std::abs(i - start) >= 2 && std::abs(i - end) >= 2) {
-      if (!stepping) {
-        const int64_t c = i * one + h;
-        const int64_t num = sD * (a_minor * d_major + (c - a_major) * d_minor);
-        q = floor_div(num, denominator);
-        r = num - q * denominator;
-        stepping = true;
-      } else {
-        q += step_q;
-        r += step_r;
-        if (r >= denominator) r -= denominator, ++q;
-      }
-      // On a row border (r == 0) the nudge decides (see the file comment).
-      const int64_t j = tie_to_lower && r == 0 ? q - 1 : q;
-      if (j < minor_lo || j > minor_hi) continue;
-      visit(x_major ? i : j, x_major ? j : i, s);
-      continue;
-    }
-    stepping = false;
+  const auto end_column = [&](int64_t i) {
     const double m = static_cast<double>(a_minor) + static_cast<double>(i * one + h - a_major) *
                                                         static_cast<double>(d_minor) /
                                                         static_cast<double>(d_major);
@@ -141,31 +159,65 @@ void diamond_exit(const WindowSegment& seg, uint32_t bits, const Box& box, Visit
     for (int64_t j = std::max(j0 - 1, minor_lo); j <= std::min(j0 + 1, minor_hi); ++j) {
       const int64_t px = x_major ? i : j, py = x_major ? j : i;
       if (exits_diamond(ax - (px * one + h), ay - (py * one + h), dx, dy, h)) {
-        visit(px, py, s);
-        break;
+        visit(px, py, static_cast<uint32_t>(std::abs(i - start)));
+        return;
       }
     }
+  };
+  // Inner columns: at least two from both end pixels.
+  const int64_t inner_lo = std::max(lo, first + 2), inner_hi = std::min(hi, last - 2);
+  if (inner_lo > inner_hi) {
+    for (int64_t i = lo; i <= hi; ++i)
+      end_column(i);
+    return;
   }
+  for (int64_t i = lo; i < inner_lo; ++i)
+    end_column(i);
+  // The columns whose crossing can lie in the box's rows, from the line's slope in double,
+  // widened by two columns for rounding; the exact row test below decides.
+  int64_t run_lo = inner_lo, run_hi = inner_hi;
+  if (d_minor != 0) {
+    const double slope = static_cast<double>(d_major) / static_cast<double>(d_minor);
+    const auto column_at = [&](int64_t row) {  // the column where the line meets `row`
+      return (static_cast<double>(row * one - a_minor) * slope + static_cast<double>(a_major - h)) /
+             static_cast<double>(one);
+    };
+    const double c0 = column_at(minor_lo), c1 = column_at(minor_hi + 1);
+    run_lo = std::max(run_lo, static_cast<int64_t>(std::floor(std::min(c0, c1))) - 2);
+    run_hi = std::min(run_hi, static_cast<int64_t>(std::ceil(std::max(c0, c1))) + 2);
+  }
+  // Minor coordinate at a column centre c: (a_minor D + (c - a_major) d_minor) / D with
+  // D = |d_major| > 0, i.e. the numerator sD (a_minor d_major + (c - a_major) d_minor), sD the
+  // sign of d_major; the next column adds sD one d_minor. On a row border (r == 0) the nudge
+  // decides (see the file comment).
+  if (run_lo <= run_hi) {
+    const int64_t sD = d_major > 0 ? 1 : -1;
+    visit_run(ColumnRun{run_lo, run_hi,
+                        sD * (a_minor * d_major + (run_lo * one + h - a_major) * d_minor),
+                        sD * d_minor * one, std::abs(d_major) * one, 0, 1,
+                        x_major && d_minor * d_major > 0, minor_lo, minor_hi, x_major, start});
+  }
+  for (int64_t i = inner_hi + 1; i <= hi; ++i)
+    end_column(i);
 }
 
-template <typename Visit>
-void bresenham(const WindowSegment& seg, uint32_t bits, const Box& box, Visit visit) {
+template <typename VisitRun>
+void bresenham(const WindowSegment& seg, uint32_t bits, const Box& box, VisitRun visit_run) {
   int64_t x0 = seg.a.fx >> bits, y0 = seg.a.fy >> bits;
   int64_t x1 = seg.b.fx >> bits, y1 = seg.b.fy >> bits;
   const bool x_major = std::abs(x1 - x0) >= std::abs(y1 - y0);
   const int64_t start_major = x_major ? x0 : y0;
   if (!x_major) std::swap(x0, y0), std::swap(x1, y1);
   if (x0 > x1) std::swap(x0, x1), std::swap(y0, y1);
-  const int64_t dx = x1 - x0, ady = std::abs(y1 - y0), step = y1 >= y0 ? 1 : -1;
+  const int64_t dx = x1 - x0, ady = std::abs(y1 - y0);
   const int64_t lo = std::max(x0, x_major ? box.x0 : box.y0);
   const int64_t hi = std::min(x1, x_major ? box.x1 : box.y1);
-  for (int64_t x = lo; x <= hi; ++x) {
-    // Minor steps taken after k major steps: ady k / dx rounded half down.
-    const int64_t k = x - x0;
-    const int64_t y = dx == 0 ? y0 : y0 + step * ((2 * ady * k + dx - 1) / (2 * dx));
-    const int64_t px = x_major ? x : y, py = x_major ? y : x;
-    if (box.contains(px, py)) visit(px, py, static_cast<uint32_t>(std::abs(x - start_major)));
-  }
+  if (lo > hi) return;
+  // Minor steps taken after k = x - x0 major steps: ady k / dx rounded half down, i.e. the
+  // floor of (2 ady k + dx - 1) / (2 dx).
+  visit_run(ColumnRun{lo, hi, dx == 0 ? 0 : 2 * ady * (lo - x0) + dx - 1, dx == 0 ? 0 : 2 * ady,
+                      dx == 0 ? 1 : 2 * dx, y0, y1 >= y0 ? 1 : -1, false, x_major ? box.y0 : box.x0,
+                      x_major ? box.y1 : box.x1, x_major, start_major});
 }
 
 template <typename Visit>
@@ -219,19 +271,174 @@ void smooth(const WindowSegment& seg, float width, const Box& box, Visit visit) 
   }
 }
 
+// The shading of a segment (line_kernel.hpp), with the reference's operands.
+LineShading line_shading(const WindowSegment& seg, const PipelineState& pipeline) {
+  LineShading sh;
+  sh.ax = seg.a.x;
+  sh.ay = seg.a.y;
+  sh.ex = seg.b.x - seg.a.x;
+  sh.ey = seg.b.y - seg.a.y;
+  const double len2 = sh.ex * sh.ex + sh.ey * sh.ey;
+  if (len2 > 0.0) {
+    sh.inv_len2 = 1.0 / len2;
+  } else {
+    sh.ex = sh.ey = 0.0;  // t = 0
+  }
+  sh.perspective =
+      pipeline.interpolation == Interpolation::kPerspective && seg.a.inv_w != seg.b.inv_w;
+  sh.inv_wa = seg.a.inv_w;
+  sh.inv_wb = seg.b.inv_w;
+  sh.z = seg.a.z;
+  sh.dz = seg.b.z - seg.a.z;
+  for (int c = 0; c < 4; ++c) {
+    sh.color[c] = seg.a.color[c];
+    sh.dcolor[c] = seg.b.color[c] - seg.a.color[c];  // in float, as the reference
+  }
+  return sh;
+}
+
+// One-pixel lines with one sample into RGBA8 (or no colour): a tile's pixels of a segment are
+// gathered into a run, shaded by the SIMD kernel, and written by a short scalar loop that does
+// what TileWriter::write does for them (depth test and write, colour store, counters).
+struct RunWriter {
+  detail::FramebufferStorage& fb;
+  const PipelineState& pipeline;
+  LineShadeFn shade;
+  Counters& counters;
+  size_t tile_base = 0;  // the drawn tile's first value in the sample planes
+  alignas(64) int32_t x[kLineRunCapacity] = {};
+  alignas(64) int32_t y[kLineRunCapacity] = {};
+  alignas(64) uint32_t rgba[kLineRunCapacity];
+  alignas(64) float depth[kLineRunCapacity];
+  alignas(64) uint32_t offset[kLineRunCapacity];
+
+  static bool applies(const detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                      const LineState& state) {
+    return !state.antialiased && fb.desc.samples == 1 &&
+           (fb.desc.color_format == ColorFormat::kRGBA8 || !pipeline.color_write);
+  }
+
+  // Shades and writes pixels 0 .. n - 1 of the run.
+  void flush(const LineShading& sh, size_t n) {
+    if (n == 0) return;
+    shade(sh, x, y, n, LineRunOut{rgba, depth, offset});
+    uint8_t* colour = fb.rgba8.data();
+    const bool write_colour = pipeline.color_write;
+    if (!pipeline.depth_test) {
+      if (write_colour) {
+        uint8_t* tile_colour = colour + tile_base * 4;
+        for (size_t i = 0; i < n; ++i)
+          std::memcpy(tile_colour + size_t{offset[i]} * 4, &rgba[i], 4);
+        counters.pixels_shaded += n;
+      }
+      counters.samples_covered += n;
+      counters.samples_passed += n;
+      return;
+    }
+    const double depth_scale = detail::depth_scale(fb.desc.depth_format);
+    uint64_t passed = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const size_t index = tile_base + offset[i];
+      // The one sample sits at the pixel centre: depth + 0 (offsets) as TileWriter forms it.
+      const float z = detail::encode_depth(std::clamp(depth[i] + 0.0f, 0.0f, 1.0f), depth_scale);
+      if (!detail::depth_passes(pipeline.depth_compare, z, fb.depth[index])) continue;
+      ++passed;
+      if (pipeline.depth_write) {
+        fb.depth[index] = z;
+        if (fb.hiz_valid) {
+          // The block's Hi-Z bounds are stale: mark them for recomputation (block_kernel.cpp).
+          const size_t block =
+              index / detail::kBlockPixels;  // tile * kBlocksPerTile + block in tile
+          fb.hiz_min[block] = std::numeric_limits<float>::infinity();
+          fb.hiz_max[block] = -std::numeric_limits<float>::infinity();
+        }
+      }
+      if (write_colour) std::memcpy(colour + index * 4, &rgba[i], 4);
+    }
+    counters.samples_covered += n;
+    counters.samples_passed += passed;
+    if (write_colour) counters.pixels_shaded += passed;
+  }
+};
+
 void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState& pipeline,
-                    const LineState& state, TileWriter& out) {
+                    const LineState& state, TileWriter& out, RunWriter* runs) {
   const WindowSegment& seg = setup.seg;
   const Box box = setup.box.intersect(tile);
   if (box.empty()) return;
+  const uint32_t bits = pipeline.subpixel_bits;
+  const bool stippled = state.stipple.pattern != 0xFFFF;
+  const auto stipple_on = [&](uint32_t s) {
+    const uint32_t n = seg.stipple_base + s;
+    return ((state.stipple.pattern >> ((n / state.stipple.factor) % 16)) & 1u) != 0;
+  };
+  if (runs != nullptr) {
+    const LineShading sh = line_shading(seg, pipeline);
+    int32_t* xs = runs->x;
+    int32_t* ys = runs->y;
+    size_t n = 0;  // pixels in the run (a local, so the walk keeps it in a register)
+    auto visit = [&](int64_t px, int64_t py, uint32_t s) {
+      if (stippled && !stipple_on(s)) return;
+      xs[n] = static_cast<int32_t>(px);
+      ys[n] = static_cast<int32_t>(py);
+      if (++n == kLineRunPixels) {
+        runs->flush(sh, n);
+        n = 0;
+      }
+    };
+    auto visit_run = [&](const ColumnRun& run) {
+      if (stippled) {
+        for_each_pixel(run, visit);
+        return;
+      }
+      // Every column is written and kept when its row is in the box (no branch), in chunks
+      // that fit the run arrays.
+      int32_t* major = run.x_major ? xs : ys;
+      int32_t* minor = run.x_major ? ys : xs;
+      // The row before the nudge, jq = base + sign q, steps by sign (step_q + carry).
+      const DivisionStepper d(run);
+      int64_t jq = run.base + run.sign * d.q, r = d.r;
+      const int64_t jq_step = run.sign * d.step_q, sign = run.sign, r_step = d.step_r;
+      const int64_t den = d.den, j_lo = run.j_lo;
+      const uint64_t j_span = static_cast<uint64_t>(run.j_hi - run.j_lo);
+      const bool tie = run.tie;
+      for (int64_t i = run.i_lo; i <= run.i_hi;) {
+        if (n >= kLineRunPixels) {
+          runs->flush(sh, n);
+          n = 0;
+        }
+        const int64_t chunk_end = std::min(run.i_hi, i + int64_t{kLineRunPixels} - 1);
+        for (; i <= chunk_end; ++i) {
+          const int64_t j = jq - static_cast<int64_t>(tie & (r == 0));
+          major[n] = static_cast<int32_t>(i);
+          minor[n] = static_cast<int32_t>(j);
+          n += static_cast<size_t>(static_cast<uint64_t>(j - j_lo) <= j_span);
+          const int64_t carried = r + r_step;
+          const bool wrap = carried >= den;
+          jq += jq_step + (wrap ? sign : 0);
+          r = wrap ? carried - den : carried;
+        }
+      }
+    };
+    switch (state.algorithm) {
+      case LineAlgorithm::kDiamondExit:
+        diamond_exit(seg, bits, box, visit, visit_run);
+        break;
+      case LineAlgorithm::kBresenham:
+        bresenham(seg, bits, box, visit_run);
+        break;
+      case LineAlgorithm::kDDA:
+        dda(seg, bits, box, visit);
+        break;
+    }
+    runs->flush(sh, n);
+    return;
+  }
   const double ex = seg.b.x - seg.a.x, ey = seg.b.y - seg.a.y;
   const double len2 = ex * ex + ey * ey;
   const double inv_len2 = len2 > 0.0 ? 1.0 / len2 : 0.0;  // t = projection * inv_len2
   auto shade = [&](int64_t px, int64_t py, uint32_t s, float coverage) {
-    if (state.stipple.pattern != 0xFFFF) {
-      const uint32_t n = seg.stipple_base + s;
-      if (!((state.stipple.pattern >> ((n / state.stipple.factor) % 16)) & 1u)) return;
-    }
+    if (stippled && !stipple_on(s)) return;
     double t = 0.0;
     if (len2 > 0.0) {
       t = std::clamp(((static_cast<double>(px) + 0.5 - seg.a.x) * ex +
@@ -249,19 +456,19 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
       color[c] = static_cast<float>(seg.a.color[c] + tc * (seg.b.color[c] - seg.a.color[c]));
     out.write(px, py, static_cast<float>(seg.a.z + t * (seg.b.z - seg.a.z)), color, coverage);
   };
-  const uint32_t bits = pipeline.subpixel_bits;
   if (state.antialiased) {
     smooth(seg, state.width, box,
            [&](int64_t x, int64_t y, uint32_t s, float c) { shade(x, y, s, c); });
     return;
   }
   auto visit = [&](int64_t x, int64_t y, uint32_t s) { shade(x, y, s, 1.0f); };
+  auto visit_run = [&](const ColumnRun& run) { for_each_pixel(run, visit); };
   switch (state.algorithm) {
     case LineAlgorithm::kDiamondExit:
-      diamond_exit(seg, bits, box, visit);
+      diamond_exit(seg, bits, box, visit, visit_run);
       break;
     case LineAlgorithm::kBresenham:
-      bresenham(seg, bits, box, visit);
+      bresenham(seg, bits, box, visit_run);
       break;
     case LineAlgorithm::kDDA:
       dda(seg, bits, box, visit);
@@ -319,7 +526,7 @@ constexpr size_t kMinChunkSegments = 2048;
 
 }  // namespace
 
-void draw_thin_lines(tbb::task_arena& arena, detail::FramebufferStorage& fb,
+void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, detail::FramebufferStorage& fb,
                      const PipelineState& pipeline, const LineState& state,
                      std::span<const WindowSegment> segments, Counters& counters) {
   if (segments.empty()) return;
@@ -329,6 +536,8 @@ void draw_thin_lines(tbb::task_arena& arena, detail::FramebufferStorage& fb,
                                                 threads <= 1 ? 1 : size_t{4} * threads);
   std::vector<Chunk> chunks(chunk_count);
   const double margin = 2.0 + 0.5 * state.width;
+  const bool use_runs = RunWriter::applies(fb, pipeline, state);
+  const LineShadeFn shade = line_shade_kernel(simd_target);
 
   arena.execute([&] {
     tbb::parallel_for(size_t{0}, chunk_count, [&](size_t c) {
@@ -371,6 +580,11 @@ void draw_thin_lines(tbb::task_arena& arena, detail::FramebufferStorage& fb,
             const int64_t y0 = int64_t{tile / grid.tiles_x} * binning::kTileSize;
             const Box tile_box{x0, y0, x0 + binning::kTileSize - 1, y0 + binning::kTileSize - 1};
             TileWriter writer{fb, pipeline, state.antialiased, tile_counters[tile]};
+            std::optional<RunWriter> runs;
+            if (use_runs) {
+              runs.emplace(fb, pipeline, shade, tile_counters[tile]);
+              runs->tile_base = size_t{tile} * binning::kTilePixels;
+            }
             for (const Chunk& chunk : chunks) {
               const std::span<const uint32_t> list = chunk.bins.tile(tile);
               for (size_t n = 0; n < list.size(); ++n) {
@@ -379,7 +593,8 @@ void draw_thin_lines(tbb::task_arena& arena, detail::FramebufferStorage& fb,
                   for (size_t line = 0; line < sizeof(LineSetup); line += 64)
                     __builtin_prefetch(ahead + line);
                 }
-                raster_segment(chunk.setups[list[n]], tile_box, pipeline, state, writer);
+                raster_segment(chunk.setups[list[n]], tile_box, pipeline, state, writer,
+                               runs ? &*runs : nullptr);
               }
             }
           }

@@ -3,6 +3,7 @@
 // segments in submission order, in parallel with the other tiles, like the triangle path.
 #pragma once
 
+#include <cstdint>
 #include <span>
 
 #include <tbb/task_arena.h>
@@ -16,8 +17,8 @@
 namespace tessera::fast {
 
 // Draws assembled segments exactly as reference::draw_thin_lines does (same pixels, same
-// bytes), inside `arena`.
-void draw_thin_lines(tbb::task_arena& arena, detail::FramebufferStorage& fb,
+// bytes), inside `arena`, with the kernels of a Highway target bit (simd/dispatch.hpp).
+void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, detail::FramebufferStorage& fb,
                      const PipelineState& pipeline, const LineState& state,
                      std::span<const WindowSegment> segments, Counters& counters);
 
