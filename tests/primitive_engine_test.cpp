@@ -187,11 +187,45 @@ TEST(PrimitiveEngine, StippledStripsAndDepthTestedLinesMatchTheReference) {
   LineState state;
   state.topology = LineTopology::kStrip;
   state.stipple = {0x0C0F, 3};
-  expect_engine_matches(
-      [&](Renderer& r, Framebuffer& fb) {
-        r.draw_lines(fb, {}, state, soup.input());  // depth LESS against the line's own depth
-      },
-      true, 4);
+  for (LineAlgorithm alg :
+       {LineAlgorithm::kDiamondExit, LineAlgorithm::kBresenham, LineAlgorithm::kDDA}) {
+    state.algorithm = alg;
+    for (uint32_t samples : {1u, 4u}) {
+      SCOPED_TRACE(testing::Message()
+                   << "algorithm " << static_cast<int>(alg) << ", samples " << samples);
+      expect_engine_matches(
+          [&](Renderer& r, Framebuffer& fb) {
+            r.draw_lines(fb, {}, state, soup.input());  // depth LESS against the line's own depth
+          },
+          true, samples);
+    }
+  }
+}
+
+// One-sample lines under every depth state: each compare op with and without depth writes,
+// colour writes off, perspective-interpolated colour, drawn twice over the same framebuffer
+// so that the second draw tests against the first's depth.
+TEST(PrimitiveEngine, OneSampleLinesUnderEveryDepthStateMatchTheReference) {
+  const Soup soup = random_segments(8, 1500);
+  for (CompareOp op : {CompareOp::kLess, CompareOp::kLessEqual, CompareOp::kGreater,
+                       CompareOp::kEqual, CompareOp::kNotEqual, CompareOp::kNever}) {
+    for (bool depth_write : {true, false}) {
+      for (bool color_write : {true, false}) {
+        SCOPED_TRACE(testing::Message() << "op " << static_cast<int>(op) << ", depth write "
+                                        << depth_write << ", colour write " << color_write);
+        PipelineState p;
+        p.depth_compare = op;
+        p.depth_write = depth_write;
+        p.color_write = color_write;
+        expect_engine_matches(
+            [&](Renderer& r, Framebuffer& fb) {
+              r.draw_lines(fb, always(), {}, soup.input());
+              r.draw_lines(fb, p, {}, soup.input());
+            },
+            true);
+      }
+    }
+  }
 }
 
 // Lines that write depth between triangle draws: the triangles after them must see that depth
