@@ -95,11 +95,14 @@ WindowPoint to_window_point(const ClipVertex& v, uint32_t attribute_count, uint3
                             uint32_t height, uint32_t bits) {
   const double wx = (v.x / v.w + 1.0) * (0.5 * width);
   const double wy = (1.0 - v.y / v.w) * (0.5 * height);
+  // Scaling by 2^bits and 2^-bits is exact (as ldexp is): the values lie far inside the
+  // double range, so the products neither overflow nor lose bits.
+  const double scale = static_cast<double>(uint32_t{1} << bits), inv_scale = 1.0 / scale;
   WindowPoint p;
-  p.fx = static_cast<int64_t>(std::nearbyint(std::ldexp(wx, static_cast<int>(bits))));
-  p.fy = static_cast<int64_t>(std::nearbyint(std::ldexp(wy, static_cast<int>(bits))));
-  p.x = std::ldexp(static_cast<double>(p.fx), -static_cast<int>(bits));
-  p.y = std::ldexp(static_cast<double>(p.fy), -static_cast<int>(bits));
+  p.fx = static_cast<int64_t>(std::nearbyint(wx * scale));
+  p.fy = static_cast<int64_t>(std::nearbyint(wy * scale));
+  p.x = static_cast<double>(p.fx) * inv_scale;
+  p.y = static_cast<double>(p.fy) * inv_scale;
   p.z = std::clamp(v.z / v.w, 0.0, 1.0);
   p.inv_w = 1.0 / v.w;
   for (uint32_t c = 0; c < std::min(attribute_count, 4u); ++c)

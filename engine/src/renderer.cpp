@@ -55,6 +55,7 @@ struct Renderer::Impl {
   RendererOptions options;
   tbb::task_arena arena;
   fast::FastRasterizer fast;
+  fast::LineScratch lines;
   std::string target_name;
   Counters counters;
 };
@@ -124,8 +125,8 @@ void Renderer::draw_lines(Framebuffer& target, const PipelineState& pipeline,
         if (impl_->options.backend == Backend::kReference) {
           draw_reference_thin_lines(storage, pipeline, s, segments, impl_->counters);
         } else {
-          fast::draw_thin_lines(impl_->arena, impl_->fast.simd_target(), storage, pipeline, s,
-                                segments, impl_->counters);
+          fast::draw_thin_lines(impl_->arena, impl_->fast.simd_target(), impl_->lines, storage,
+                                pipeline, s, segments, impl_->counters);
         }
       },
       impl_->counters);

@@ -21,7 +21,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace {
 
-#if !HWY_HAVE_FLOAT64
+#if !HWY_HAVE_FLOAT64 || HWY_TARGET == HWY_SCALAR
 void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, size_t n,
                   const LineRunOut& out) {
   for (size_t i = 0; i < n; ++i) {
@@ -53,51 +53,77 @@ HWY_INLINE auto unorm8(DF df, VF c) {
 }
 #endif
 
+#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
+// t of the pixels at x[0..], y[0..] (one double vector): the reference's projection, clamped.
+template <class DD>
+HWY_INLINE hn::Vec<DD> line_t(DD dd, const LineShading& sh, const int32_t* x, const int32_t* y) {
+  const hn::Rebind<int32_t, DD> di;
+  const auto px = hn::PromoteTo(dd, hn::LoadU(di, x));
+  const auto py = hn::PromoteTo(dd, hn::LoadU(di, y));
+  const auto half = hn::Set(dd, 0.5);
+  const auto along =
+      hn::Add(hn::Mul(hn::Sub(hn::Add(px, half), hn::Set(dd, sh.ax)), hn::Set(dd, sh.ex)),
+              hn::Mul(hn::Sub(hn::Add(py, half), hn::Set(dd, sh.ay)), hn::Set(dd, sh.ey)));
+  return hn::Min(hn::Max(hn::Mul(along, hn::Set(dd, sh.inv_len2)), hn::Zero(dd)), hn::Set(dd, 1.0));
+}
+
+// The colour parameter: t, or with perspective t wb / ((1 - t) wa + t wb) where that is > 0.
+template <class DD>
+HWY_INLINE hn::Vec<DD> color_t(DD dd, const LineShading& sh, hn::Vec<DD> t) {
+  if (!sh.perspective) return t;
+  const auto qa = hn::Mul(hn::Sub(hn::Set(dd, 1.0), t), hn::Set(dd, sh.inv_wa));
+  const auto qb = hn::Mul(t, hn::Set(dd, sh.inv_wb));
+  const auto q = hn::Add(qa, qb);
+  return hn::IfThenElse(hn::Gt(q, hn::Zero(dd)), hn::Div(qb, q), t);
+}
+
+// base + t d in double for both halves, rounded to float, as one float vector.
+template <class DF, class DD>
+HWY_INLINE hn::Vec<DF> lerp_to_float(DF df, DD dd, double base, double d, hn::Vec<DD> t_lo,
+                                     hn::Vec<DD> t_hi) {
+  const hn::Half<DF> dfh;
+  const auto b = hn::Set(dd, base), dv = hn::Set(dd, d);
+  return hn::Combine(df, hn::DemoteTo(dfh, hn::Add(b, hn::Mul(t_hi, dv))),
+                     hn::DemoteTo(dfh, hn::Add(b, hn::Mul(t_lo, dv))));
+}
+#endif
+
 void ShadeLinePixels(const LineShading& sh, const int32_t* x, const int32_t* y, size_t n,
                      const LineRunOut& out) {
-#if HWY_HAVE_FLOAT64
-  const hn::ScalableTag<double> dd;
-  const hn::Rebind<int32_t, decltype(dd)> di;
-  const hn::Rebind<float, decltype(dd)> df;
+#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
+  // A step covers one float vector of pixels: two double vectors, each rounded to half of it.
+  const hn::ScalableTag<float> df;
+  const hn::Repartition<double, decltype(df)> dd;
+  const hn::RebindToSigned<decltype(df)> di;
   const hn::RebindToUnsigned<decltype(df)> du;
-  const size_t lanes = hn::Lanes(dd);
-  const auto half = hn::Set(dd, 0.5), zero = hn::Zero(dd), one = hn::Set(dd, 1.0);
-  const auto ax = hn::Set(dd, sh.ax), ay = hn::Set(dd, sh.ay);
-  const auto ex = hn::Set(dd, sh.ex), ey = hn::Set(dd, sh.ey), inv = hn::Set(dd, sh.inv_len2);
+  const size_t lanes = hn::Lanes(df), half_lanes = hn::Lanes(dd);
   const auto tile_mask = hn::Set(di, static_cast<int32_t>(binning::kTileSize - 1));
   const auto block_mask = hn::Set(di, static_cast<int32_t>(detail::kBlockSize - 1));
+  const auto block_pixels = hn::Set(di, static_cast<int32_t>(detail::kBlockPixels));
   for (size_t i = 0; i < n; i += lanes) {
-    const auto ix = hn::LoadU(di, x + i), iy = hn::LoadU(di, y + i);
-    const auto px = hn::PromoteTo(dd, ix);
-    const auto py = hn::PromoteTo(dd, iy);
     // detail::in_tile: block (ty / 8) * 8 + tx / 8 of 64 pixels, then row-major in the block.
-    const auto tx = hn::And(ix, tile_mask), ty = hn::And(iy, tile_mask);
+    const auto tx = hn::And(hn::LoadU(di, x + i), tile_mask);
+    const auto ty = hn::And(hn::LoadU(di, y + i), tile_mask);
     const auto block =
         hn::Add(hn::ShiftLeft<detail::kBlockSizeLog2>(hn::ShiftRight<detail::kBlockSizeLog2>(ty)),
                 hn::ShiftRight<detail::kBlockSizeLog2>(tx));
     const auto offset =
-        hn::Add(hn::Mul(block, hn::Set(di, static_cast<int32_t>(detail::kBlockPixels))),
+        hn::Add(hn::Mul(block, block_pixels),
                 hn::Add(hn::ShiftLeft<detail::kBlockSizeLog2>(hn::And(ty, block_mask)),
                         hn::And(tx, block_mask)));
     hn::StoreU(hn::BitCast(du, offset), du, out.offset + i);
-    const auto along = hn::Add(hn::Mul(hn::Sub(hn::Add(px, half), ax), ex),
-                               hn::Mul(hn::Sub(hn::Add(py, half), ay), ey));
-    const auto t = hn::Min(hn::Max(hn::Mul(along, inv), zero), one);
-    auto tc = t;
-    if (sh.perspective) {
-      const auto qa = hn::Mul(hn::Sub(one, t), hn::Set(dd, sh.inv_wa));
-      const auto qb = hn::Mul(t, hn::Set(dd, sh.inv_wb));
-      const auto q = hn::Add(qa, qb);
-      tc = hn::IfThenElse(hn::Gt(q, zero), hn::Div(qb, q), t);
-    }
-    auto packed = hn::Zero(du);
-    for (int c = 0; c < 4; ++c) {
-      const auto value = hn::Add(hn::Set(dd, sh.color[c]), hn::Mul(tc, hn::Set(dd, sh.dcolor[c])));
-      packed = hn::Or(packed, hn::ShiftLeftSame(unorm8(df, hn::DemoteTo(df, value)), 8 * c));
-    }
-    hn::StoreU(packed, du, out.rgba + i);
-    hn::StoreU(hn::DemoteTo(df, hn::Add(hn::Set(dd, sh.z), hn::Mul(t, hn::Set(dd, sh.dz)))), df,
-               out.depth + i);
+
+    const auto t_lo = line_t(dd, sh, x + i, y + i);
+    const auto t_hi = line_t(dd, sh, x + i + half_lanes, y + i + half_lanes);
+    const auto tc_lo = color_t(dd, sh, t_lo), tc_hi = color_t(dd, sh, t_hi);
+    const auto r = unorm8(df, lerp_to_float(df, dd, sh.color[0], sh.dcolor[0], tc_lo, tc_hi));
+    const auto g = unorm8(df, lerp_to_float(df, dd, sh.color[1], sh.dcolor[1], tc_lo, tc_hi));
+    const auto b = unorm8(df, lerp_to_float(df, dd, sh.color[2], sh.dcolor[2], tc_lo, tc_hi));
+    const auto a = unorm8(df, lerp_to_float(df, dd, sh.color[3], sh.dcolor[3], tc_lo, tc_hi));
+    hn::StoreU(
+        hn::Or(hn::Or(r, hn::ShiftLeft<8>(g)), hn::Or(hn::ShiftLeft<16>(b), hn::ShiftLeft<24>(a))),
+        du, out.rgba + i);
+    hn::StoreU(lerp_to_float(df, dd, sh.z, sh.dz, t_lo, t_hi), df, out.depth + i);
   }
 #else
   shade_scalar(sh, x, y, n, out);

@@ -93,15 +93,14 @@ int64_t floor_div(int64_t a, int64_t b) {  // b > 0
 }
 
 // The inner columns of a segment (rows, for a y-major line) as a division stepped exactly:
-// column i in [i_lo, i_hi] has its pixel on row base + sign q(i) - (tie && r(i) == 0), q and r
-// the floor quotient and remainder of num + (i - i_lo) step by den > 0; rows outside
+// column i in [i_lo, i_hi] has its pixel on row base + sign q(i), q and r the floor quotient
+// and remainder of num + (i - i_lo) step by den > 0; rows outside
 // [j_lo, j_hi] (the box) are not drawn. Pixel (i, j) is (x, y) for x-major lines, else (y, x);
 // its stipple counter is |i - start|.
 struct ColumnRun {
   int64_t i_lo, i_hi;
   int64_t num, step, den;
   int64_t base, sign;
-  bool tie;
   int64_t j_lo, j_hi;
   bool x_major;
   int64_t start;
@@ -128,7 +127,7 @@ template <typename Visit>
 void for_each_pixel(const ColumnRun& run, Visit visit) {
   DivisionStepper d(run);
   for (int64_t i = run.i_lo; i <= run.i_hi; ++i, d.next()) {
-    const int64_t j = run.base + run.sign * d.q - static_cast<int64_t>(run.tie & (d.r == 0));
+    const int64_t j = run.base + run.sign * d.q;
     if (j >= run.j_lo && j <= run.j_hi) {
       visit(run.x_major ? i : j, run.x_major ? j : i,
             static_cast<uint32_t>(std::abs(i - run.start)));
@@ -188,14 +187,16 @@ void diamond_exit(const WindowSegment& seg, uint32_t bits, const Box& box, Visit
   }
   // Minor coordinate at a column centre c: (a_minor D + (c - a_major) d_minor) / D with
   // D = |d_major| > 0, i.e. the numerator sD (a_minor d_major + (c - a_major) d_minor), sD the
-  // sign of d_major; the next column adds sD one d_minor. On a row border (r == 0) the nudge
-  // decides (see the file comment).
+  // sign of d_major; the next column adds sD one d_minor. On a row border (remainder 0) the
+  // nudge decides (see the file comment): when it moves the crossing to the upper row, the
+  // numerator is one less, which lowers the quotient exactly when the remainder is 0.
   if (run_lo <= run_hi) {
     const int64_t sD = d_major > 0 ? 1 : -1;
-    visit_run(ColumnRun{run_lo, run_hi,
-                        sD * (a_minor * d_major + (run_lo * one + h - a_major) * d_minor),
-                        sD * d_minor * one, std::abs(d_major) * one, 0, 1,
-                        x_major && d_minor * d_major > 0, minor_lo, minor_hi, x_major, start});
+    const int64_t tie_to_lower = x_major && d_minor * d_major > 0 ? 1 : 0;
+    visit_run(ColumnRun{
+        run_lo, run_hi,
+        sD * (a_minor * d_major + (run_lo * one + h - a_major) * d_minor) - tie_to_lower,
+        sD * d_minor * one, std::abs(d_major) * one, 0, 1, minor_lo, minor_hi, x_major, start});
   }
   for (int64_t i = inner_hi + 1; i <= hi; ++i)
     end_column(i);
@@ -216,7 +217,7 @@ void bresenham(const WindowSegment& seg, uint32_t bits, const Box& box, VisitRun
   // Minor steps taken after k = x - x0 major steps: ady k / dx rounded half down, i.e. the
   // floor of (2 ady k + dx - 1) / (2 dx).
   visit_run(ColumnRun{lo, hi, dx == 0 ? 0 : 2 * ady * (lo - x0) + dx - 1, dx == 0 ? 0 : 2 * ady,
-                      dx == 0 ? 1 : 2 * dx, y0, y1 >= y0 ? 1 : -1, false, x_major ? box.y0 : box.x0,
+                      dx == 0 ? 1 : 2 * dx, y0, y1 >= y0 ? 1 : -1, x_major ? box.y0 : box.x0,
                       x_major ? box.y1 : box.x1, x_major, start_major});
 }
 
@@ -395,30 +396,31 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
       // that fit the run arrays.
       int32_t* major = run.x_major ? xs : ys;
       int32_t* minor = run.x_major ? ys : xs;
-      // The row before the nudge, jq = base + sign q, steps by sign (step_q + carry).
+      // The row jq = base + sign q steps by sign (step_q + carry). The carry is arithmetic
+      // (the sign bit of r + step_r - den), not a branch: it follows the slope's fraction,
+      // which no predictor learns.
       const DivisionStepper d(run);
       int64_t jq = run.base + run.sign * d.q, r = d.r;
-      const int64_t jq_step = run.sign * d.step_q, sign = run.sign, r_step = d.step_r;
-      const int64_t den = d.den, j_lo = run.j_lo;
+      const int64_t jq_carry = run.sign * (d.step_q + 1), sign = run.sign;
+      const int64_t r_step = d.step_r, den = d.den, j_lo = run.j_lo;
       const uint64_t j_span = static_cast<uint64_t>(run.j_hi - run.j_lo);
-      const bool tie = run.tie;
+      size_t count = n;  // in a register for the loop
       for (int64_t i = run.i_lo; i <= run.i_hi;) {
-        if (n >= kLineRunPixels) {
-          runs->flush(sh, n);
-          n = 0;
+        if (count >= kLineRunPixels) {
+          runs->flush(sh, count);
+          count = 0;
         }
         const int64_t chunk_end = std::min(run.i_hi, i + int64_t{kLineRunPixels} - 1);
         for (; i <= chunk_end; ++i) {
-          const int64_t j = jq - static_cast<int64_t>(tie & (r == 0));
-          major[n] = static_cast<int32_t>(i);
-          minor[n] = static_cast<int32_t>(j);
-          n += static_cast<size_t>(static_cast<uint64_t>(j - j_lo) <= j_span);
-          const int64_t carried = r + r_step;
-          const bool wrap = carried >= den;
-          jq += jq_step + (wrap ? sign : 0);
-          r = wrap ? carried - den : carried;
+          major[count] = static_cast<int32_t>(i);
+          minor[count] = static_cast<int32_t>(jq);
+          count += static_cast<size_t>(static_cast<uint64_t>(jq - j_lo) <= j_span);
+          const int64_t carried = r + r_step, wrapped = carried - den;
+          jq += wrapped >= 0 ? jq_carry : jq_carry - sign;
+          r = wrapped >= 0 ? wrapped : carried;
         }
       }
+      n = count;
     };
     switch (state.algorithm) {
       case LineAlgorithm::kDiamondExit:
@@ -499,52 +501,70 @@ bool setup_segment(const WindowSegment& seg, const LineState& state, uint32_t wi
   return !out.box.empty();
 }
 
-// Whether a tile (pixels [x0, x1] x [y0, y1]) can hold pixels within `margin` of the line.
-bool near_line(const WindowSegment& seg, double margin, double x0, double y0, double x1,
-               double y1) {
-  const double dx = seg.b.x - seg.a.x, dy = seg.b.y - seg.a.y;
-  const double length = std::sqrt(dx * dx + dy * dy);
-  const double reach = margin * length;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (double x : {x0 - 1.0, x1 + 2.0}) {
-    for (double y : {y0 - 1.0, y1 + 2.0}) {
-      const double e = (x - seg.a.x) * dy - (y - seg.a.y) * dx;
-      lo = std::min(lo, e);
-      hi = std::max(hi, e);
-    }
+// The band of pixels within `margin` of a segment's line, for choosing the tiles to reference:
+// a tile is near when the line's edge function takes a value within `reach` somewhere on the
+// tile grown by a pixel and a half (its extremes lie at two corners).
+struct Band {
+  double ax, ay, dx, dy, reach;
+  Band(const WindowSegment& seg, double margin)
+      : ax(seg.a.x),
+        ay(seg.a.y),
+        dx(seg.b.x - seg.a.x),
+        dy(seg.b.y - seg.a.y),
+        reach(margin * std::sqrt(dx * dx + dy * dy)) {}
+  // Whether tile pixels [x0, x0 + size - 1] x [y0, y0 + size - 1] can hold pixels of the band.
+  bool near(double x0, double y0, double size) const {
+    const double e = (x0 - 1.0 - ax) * dy - (y0 - 1.0 - ay) * dx;  // at the grown corner
+    const double ex = (size + 2.0) * dy, ey = -(size + 2.0) * dx;  // across the grown tile
+    const double lo = e + std::min(ex, 0.0) + std::min(ey, 0.0);
+    const double hi = e + std::max(ex, 0.0) + std::max(ey, 0.0);
+    return lo <= reach && hi >= -reach;
   }
-  return lo <= reach && hi >= -reach;
-}
+};
 
-struct Chunk {
+}  // namespace
+
+// One worker's range of a draw: its segments' setups and their tile lists.
+struct LineScratch::Chunk {
   std::vector<LineSetup> setups;
   binning::TileLists bins;
 };
+
+namespace {
 
 // Segments per chunk below which splitting the setup does not pay.
 constexpr size_t kMinChunkSegments = 2048;
 
 }  // namespace
 
-void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, detail::FramebufferStorage& fb,
-                     const PipelineState& pipeline, const LineState& state,
-                     std::span<const WindowSegment> segments, Counters& counters) {
+LineScratch::LineScratch() = default;
+LineScratch::~LineScratch() = default;
+LineScratch::LineScratch(LineScratch&&) noexcept = default;
+LineScratch& LineScratch::operator=(LineScratch&&) noexcept = default;
+
+void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, LineScratch& scratch,
+                     detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                     const LineState& state, std::span<const WindowSegment> segments,
+                     Counters& counters) {
   if (segments.empty()) return;
   const binning::TileGrid& grid = fb.grid;
   const uint32_t threads = static_cast<uint32_t>(arena.max_concurrency());
   const size_t chunk_count = std::clamp<size_t>(segments.size() / kMinChunkSegments, 1,
                                                 threads <= 1 ? 1 : size_t{4} * threads);
-  std::vector<Chunk> chunks(chunk_count);
+  std::vector<LineScratch::Chunk>& chunks = scratch.chunks;
+  if (chunks.size() < chunk_count) chunks.resize(chunk_count);
   const double margin = 2.0 + 0.5 * state.width;
   const bool use_runs = RunWriter::applies(fb, pipeline, state);
   const LineShadeFn shade = line_shade_kernel(simd_target);
 
   arena.execute([&] {
     tbb::parallel_for(size_t{0}, chunk_count, [&](size_t c) {
-      Chunk& chunk = chunks[c];
+      LineScratch::Chunk& chunk = chunks[c];
       chunk.bins.reset(grid.tile_count());
       const size_t begin = segments.size() * c / chunk_count;
       const size_t end = segments.size() * (c + 1) / chunk_count;
+      chunk.setups.clear();
+      chunk.setups.reserve(end - begin);
       for (size_t i = begin; i < end; ++i) {
         LineSetup setup;
         if (!setup_segment(segments[i], state, fb.desc.width, fb.desc.height, setup)) continue;
@@ -555,15 +575,20 @@ void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, detail::Frameb
         const uint32_t tx1 = static_cast<uint32_t>(b.x1) >> binning::kTileSizeLog2;
         const uint32_t ty0 = static_cast<uint32_t>(b.y0) >> binning::kTileSizeLog2;
         const uint32_t ty1 = static_cast<uint32_t>(b.y1) >> binning::kTileSizeLog2;
+        if (tx0 == tx1 || ty0 == ty1 || state.antialiased) {
+          for (uint32_t ty = ty0; ty <= ty1; ++ty) {
+            for (uint32_t tx = tx0; tx <= tx1; ++tx)
+              chunk.bins.add(ty * grid.tiles_x + tx, index);
+          }
+          continue;
+        }
+        const Band band(setup.seg, margin);
         for (uint32_t ty = ty0; ty <= ty1; ++ty) {
           for (uint32_t tx = tx0; tx <= tx1; ++tx) {
-            const double x0 = tx * double{binning::kTileSize}, y0 = ty * double{binning::kTileSize};
-            if (tx0 != tx1 && ty0 != ty1 && !state.antialiased &&
-                !near_line(setup.seg, margin, x0, y0, x0 + binning::kTileSize - 1,
-                           y0 + binning::kTileSize - 1)) {
-              continue;
+            if (band.near(tx * double{binning::kTileSize}, ty * double{binning::kTileSize},
+                          double{binning::kTileSize})) {
+              chunk.bins.add(ty * grid.tiles_x + tx, index);
             }
-            chunk.bins.add(ty * grid.tiles_x + tx, index);
           }
         }
       }
@@ -585,7 +610,8 @@ void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, detail::Frameb
               runs.emplace(fb, pipeline, shade, tile_counters[tile]);
               runs->tile_base = size_t{tile} * binning::kTilePixels;
             }
-            for (const Chunk& chunk : chunks) {
+            for (size_t c = 0; c < chunk_count; ++c) {
+              const LineScratch::Chunk& chunk = chunks[c];
               const std::span<const uint32_t> list = chunk.bins.tile(tile);
               for (size_t n = 0; n < list.size(); ++n) {
                 if (n + 4 < list.size()) {
@@ -600,8 +626,8 @@ void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, detail::Frameb
           }
         });
   });
-  for (const Chunk& chunk : chunks)
-    counters.bin_references += chunk.bins.references();
+  for (size_t c = 0; c < chunk_count; ++c)
+    counters.bin_references += chunks[c].bins.references();
   ++counters.bin_passes;
   for (const Counters& c : tile_counters) {
     counters.samples_covered += c.samples_covered;

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include <tbb/task_arena.h>
 
@@ -16,10 +17,22 @@
 
 namespace tessera::fast {
 
+// What a renderer keeps from one line draw to the next: the segments' setups and tile lists,
+// whose memory the next draw reuses instead of faulting in fresh pages.
+struct LineScratch {
+  struct Chunk;
+  std::vector<Chunk> chunks;
+  LineScratch();
+  ~LineScratch();
+  LineScratch(LineScratch&&) noexcept;
+  LineScratch& operator=(LineScratch&&) noexcept;
+};
+
 // Draws assembled segments exactly as reference::draw_thin_lines does (same pixels, same
 // bytes), inside `arena`, with the kernels of a Highway target bit (simd/dispatch.hpp).
-void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, detail::FramebufferStorage& fb,
-                     const PipelineState& pipeline, const LineState& state,
-                     std::span<const WindowSegment> segments, Counters& counters);
+void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, LineScratch& scratch,
+                     detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                     const LineState& state, std::span<const WindowSegment> segments,
+                     Counters& counters);
 
 }  // namespace tessera::fast
