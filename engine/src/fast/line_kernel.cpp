@@ -44,12 +44,15 @@ void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, siz
   }
 }
 #else
+// to_unorm8 of finite values: k = truncate(clamp(c, 0, 1) * 255 + 0.5), in the low byte of the
+// result; the bits above hold 2^23's exponent (k is read off floor(...) + 2^23, whose
+// significand is k), which a shift by 8 or more or a mask removes.
 template <class DF, class VF>
-HWY_INLINE auto unorm8(DF df, VF c) {
-  const hn::RebindToSigned<DF> di;
+HWY_INLINE auto unorm8_low_byte(DF df, VF c) {
   const auto clamped = hn::Min(hn::Max(c, hn::Zero(df)), hn::Set(df, 1.0f));
   const auto scaled = hn::Add(hn::Mul(clamped, hn::Set(df, 255.0f)), hn::Set(df, 0.5f));
-  return hn::BitCast(hn::RebindToUnsigned<DF>(), hn::ConvertTo(di, scaled));
+  return hn::BitCast(hn::RebindToUnsigned<DF>(),
+                     hn::Add(hn::Floor(scaled), hn::Set(df, 8388608.0f)));
 }
 #endif
 
@@ -116,13 +119,18 @@ void ShadeLinePixels(const LineShading& sh, const int32_t* x, const int32_t* y, 
     const auto t_lo = line_t(dd, sh, x + i, y + i);
     const auto t_hi = line_t(dd, sh, x + i + half_lanes, y + i + half_lanes);
     const auto tc_lo = color_t(dd, sh, t_lo), tc_hi = color_t(dd, sh, t_hi);
-    const auto r = unorm8(df, lerp_to_float(df, dd, sh.color[0], sh.dcolor[0], tc_lo, tc_hi));
-    const auto g = unorm8(df, lerp_to_float(df, dd, sh.color[1], sh.dcolor[1], tc_lo, tc_hi));
-    const auto b = unorm8(df, lerp_to_float(df, dd, sh.color[2], sh.dcolor[2], tc_lo, tc_hi));
-    const auto a = unorm8(df, lerp_to_float(df, dd, sh.color[3], sh.dcolor[3], tc_lo, tc_hi));
-    hn::StoreU(
-        hn::Or(hn::Or(r, hn::ShiftLeft<8>(g)), hn::Or(hn::ShiftLeft<16>(b), hn::ShiftLeft<24>(a))),
-        du, out.rgba + i);
+    const auto r =
+        unorm8_low_byte(df, lerp_to_float(df, dd, sh.color[0], sh.dcolor[0], tc_lo, tc_hi));
+    const auto g =
+        unorm8_low_byte(df, lerp_to_float(df, dd, sh.color[1], sh.dcolor[1], tc_lo, tc_hi));
+    const auto b =
+        unorm8_low_byte(df, lerp_to_float(df, dd, sh.color[2], sh.dcolor[2], tc_lo, tc_hi));
+    const auto a =
+        unorm8_low_byte(df, lerp_to_float(df, dd, sh.color[3], sh.dcolor[3], tc_lo, tc_hi));
+    // Shifting g, b and a left by 8 or more drops the exponent bits; r's are masked off.
+    hn::StoreU(hn::Or(hn::Or(hn::And(r, hn::Set(du, 0xFFu)), hn::ShiftLeft<8>(g)),
+                      hn::Or(hn::ShiftLeft<16>(b), hn::ShiftLeft<24>(a))),
+               du, out.rgba + i);
     hn::StoreU(lerp_to_float(df, dd, sh.z, sh.dz, t_lo, t_hi), df, out.depth + i);
   }
 #else
