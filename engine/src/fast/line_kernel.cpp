@@ -40,7 +40,11 @@ void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, siz
     }
     out.rgba[i] = packed;
     out.depth[i] = static_cast<float>(sh.z + t * sh.dz);
-    out.offset[i] = detail::in_tile(static_cast<uint32_t>(x[i]), static_cast<uint32_t>(y[i]));
+    const uint32_t px = static_cast<uint32_t>(x[i]), py = static_cast<uint32_t>(y[i]);
+    out.offset[i] =
+        ((py >> binning::kTileSizeLog2) * out.tiles_x + (px >> binning::kTileSizeLog2)) *
+            binning::kTilePixels +
+        detail::in_tile(px, py);
   }
 }
 #else
@@ -103,17 +107,21 @@ void ShadeLinePixels(const LineShading& sh, const int32_t* x, const int32_t* y, 
   const auto tile_mask = hn::Set(di, static_cast<int32_t>(binning::kTileSize - 1));
   const auto block_mask = hn::Set(di, static_cast<int32_t>(detail::kBlockSize - 1));
   const auto block_pixels = hn::Set(di, static_cast<int32_t>(detail::kBlockPixels));
+  const auto tiles_x = hn::Set(di, static_cast<int32_t>(out.tiles_x));
   for (size_t i = 0; i < n; i += lanes) {
-    // detail::in_tile: block (ty / 8) * 8 + tx / 8 of 64 pixels, then row-major in the block.
-    const auto tx = hn::And(hn::LoadU(di, x + i), tile_mask);
-    const auto ty = hn::And(hn::LoadU(di, y + i), tile_mask);
+    // sample_index: the storage tile's pixels, then detail::in_tile: block (ty / 8) * 8 + tx / 8
+    // of 64 pixels, then row-major in the block.
+    const auto ix = hn::LoadU(di, x + i), iy = hn::LoadU(di, y + i);
+    const auto tile = hn::Add(hn::Mul(hn::ShiftRight<binning::kTileSizeLog2>(iy), tiles_x),
+                              hn::ShiftRight<binning::kTileSizeLog2>(ix));
+    const auto tx = hn::And(ix, tile_mask), ty = hn::And(iy, tile_mask);
     const auto block =
         hn::Add(hn::ShiftLeft<detail::kBlockSizeLog2>(hn::ShiftRight<detail::kBlockSizeLog2>(ty)),
                 hn::ShiftRight<detail::kBlockSizeLog2>(tx));
-    const auto offset =
-        hn::Add(hn::Mul(block, block_pixels),
-                hn::Add(hn::ShiftLeft<detail::kBlockSizeLog2>(hn::And(ty, block_mask)),
-                        hn::And(tx, block_mask)));
+    const auto offset = hn::Add(
+        hn::Add(hn::ShiftLeft<2 * binning::kTileSizeLog2>(tile), hn::Mul(block, block_pixels)),
+        hn::Add(hn::ShiftLeft<detail::kBlockSizeLog2>(hn::And(ty, block_mask)),
+                hn::And(tx, block_mask)));
     hn::StoreU(hn::BitCast(du, offset), du, out.offset + i);
 
     const auto t_lo = line_t(dd, sh, x + i, y + i);

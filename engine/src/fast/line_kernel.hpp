@@ -27,12 +27,14 @@ struct LineShading {
 
 // Shades pixels (x[i], y[i]), i < n: rgba[i] holds the unorm8 colour (r in the low byte),
 // depth[i] the interpolated depth before clamping and encoding, offset[i] the pixel's place in
-// its storage tile (detail::in_tile). Reads and writes up to n rounded up to the vector width
+// a one-sample framebuffer's storage (FramebufferStorage::sample_index, with tiles_x storage
+// tiles per row). Reads and writes up to n rounded up to the vector width
 // (the arrays are kLineRunCapacity long).
 struct LineRunOut {
   uint32_t* rgba;
   float* depth;
   uint32_t* offset;
+  uint32_t tiles_x;
 };
 using LineShadeFn = void (*)(const LineShading&, const int32_t* x, const int32_t* y, size_t n,
                              const LineRunOut& out);

@@ -306,7 +306,6 @@ struct RunWriter {
   const PipelineState& pipeline;
   LineShadeFn shade;
   Counters& counters;
-  size_t tile_base = 0;  // the drawn tile's first value in the sample planes
   alignas(64) int32_t x[kLineRunCapacity] = {};
   alignas(64) int32_t y[kLineRunCapacity] = {};
   alignas(64) uint32_t rgba[kLineRunCapacity];
@@ -322,14 +321,13 @@ struct RunWriter {
   // Shades and writes pixels 0 .. n - 1 of the run.
   void flush(const LineShading& sh, size_t n) {
     if (n == 0) return;
-    shade(sh, x, y, n, LineRunOut{rgba, depth, offset});
+    shade(sh, x, y, n, LineRunOut{rgba, depth, offset, fb.grid.tiles_x});
     uint8_t* colour = fb.rgba8.data();
     const bool write_colour = pipeline.color_write;
     if (!pipeline.depth_test) {
       if (write_colour) {
-        uint8_t* tile_colour = colour + tile_base * 4;
         for (size_t i = 0; i < n; ++i)
-          std::memcpy(tile_colour + size_t{offset[i]} * 4, &rgba[i], 4);
+          std::memcpy(colour + size_t{offset[i]} * 4, &rgba[i], 4);
         counters.pixels_shaded += n;
       }
       counters.samples_covered += n;
@@ -339,7 +337,7 @@ struct RunWriter {
     const double depth_scale = detail::depth_scale(fb.desc.depth_format);
     uint64_t passed = 0;
     for (size_t i = 0; i < n; ++i) {
-      const size_t index = tile_base + offset[i];
+      const size_t index = offset[i];
       // The one sample sits at the pixel centre: depth + 0 (offsets) as TileWriter forms it.
       const float z = detail::encode_depth(std::clamp(depth[i] + 0.0f, 0.0f, 1.0f), depth_scale);
       if (!detail::depth_passes(pipeline.depth_compare, z, fb.depth[index])) continue;
@@ -382,7 +380,7 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
       if (stippled && !stipple_on(s)) return;
       xs[n] = static_cast<int32_t>(px);
       ys[n] = static_cast<int32_t>(py);
-      if (++n == kLineRunPixels) {
+      if (++n >= kLineRunPixels) {
         runs->flush(sh, n);
         n = 0;
       }
@@ -532,6 +530,15 @@ struct LineScratch::Chunk {
 
 namespace {
 
+// Lines are binned to tiles of 128 x 128 pixels (four storage tiles): a segment's pixels in a
+// tile then make runs twice as long, and each segment is set up in half as many tiles, as with
+// the storage tiles' 64 pixels.
+constexpr uint32_t kLineTileLog2 = 7, kLineTile = 1u << kLineTileLog2;
+struct BinGrid {
+  uint32_t tiles_x, tiles_y;
+  uint32_t tile_count() const { return tiles_x * tiles_y; }
+};
+
 // Segments per chunk below which splitting the setup does not pay.
 constexpr size_t kMinChunkSegments = 2048;
 
@@ -547,7 +554,8 @@ void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, LineScratch& s
                      const LineState& state, std::span<const WindowSegment> segments,
                      Counters& counters) {
   if (segments.empty()) return;
-  const binning::TileGrid& grid = fb.grid;
+  const BinGrid bin_grid{(fb.desc.width + kLineTile - 1) >> kLineTileLog2,
+                         (fb.desc.height + kLineTile - 1) >> kLineTileLog2};
   const uint32_t threads = static_cast<uint32_t>(arena.max_concurrency());
   const size_t chunk_count = std::clamp<size_t>(segments.size() / kMinChunkSegments, 1,
                                                 threads <= 1 ? 1 : size_t{4} * threads);
@@ -560,7 +568,7 @@ void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, LineScratch& s
   arena.execute([&] {
     tbb::parallel_for(size_t{0}, chunk_count, [&](size_t c) {
       LineScratch::Chunk& chunk = chunks[c];
-      chunk.bins.reset(grid.tile_count());
+      chunk.bins.reset(bin_grid.tile_count());
       const size_t begin = segments.size() * c / chunk_count;
       const size_t end = segments.size() * (c + 1) / chunk_count;
       chunk.setups.clear();
@@ -571,23 +579,22 @@ void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, LineScratch& s
         const uint32_t index = static_cast<uint32_t>(chunk.setups.size());
         chunk.setups.push_back(setup);
         const Box& b = setup.box;
-        const uint32_t tx0 = static_cast<uint32_t>(b.x0) >> binning::kTileSizeLog2;
-        const uint32_t tx1 = static_cast<uint32_t>(b.x1) >> binning::kTileSizeLog2;
-        const uint32_t ty0 = static_cast<uint32_t>(b.y0) >> binning::kTileSizeLog2;
-        const uint32_t ty1 = static_cast<uint32_t>(b.y1) >> binning::kTileSizeLog2;
+        const uint32_t tx0 = static_cast<uint32_t>(b.x0) >> kLineTileLog2;
+        const uint32_t tx1 = static_cast<uint32_t>(b.x1) >> kLineTileLog2;
+        const uint32_t ty0 = static_cast<uint32_t>(b.y0) >> kLineTileLog2;
+        const uint32_t ty1 = static_cast<uint32_t>(b.y1) >> kLineTileLog2;
         if (tx0 == tx1 || ty0 == ty1 || state.antialiased) {
           for (uint32_t ty = ty0; ty <= ty1; ++ty) {
             for (uint32_t tx = tx0; tx <= tx1; ++tx)
-              chunk.bins.add(ty * grid.tiles_x + tx, index);
+              chunk.bins.add(ty * bin_grid.tiles_x + tx, index);
           }
           continue;
         }
         const Band band(setup.seg, margin);
         for (uint32_t ty = ty0; ty <= ty1; ++ty) {
           for (uint32_t tx = tx0; tx <= tx1; ++tx) {
-            if (band.near(tx * double{binning::kTileSize}, ty * double{binning::kTileSize},
-                          double{binning::kTileSize})) {
-              chunk.bins.add(ty * grid.tiles_x + tx, index);
+            if (band.near(tx * double{kLineTile}, ty * double{kLineTile}, double{kLineTile})) {
+              chunk.bins.add(ty * bin_grid.tiles_x + tx, index);
             }
           }
         }
@@ -595,36 +602,35 @@ void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, LineScratch& s
     });
   });
 
-  std::vector<Counters> tile_counters(grid.tile_count());
+  std::vector<Counters> tile_counters(bin_grid.tile_count());
   arena.execute([&] {
-    tbb::parallel_for(
-        tbb::blocked_range<uint32_t>(0, grid.tile_count(), 1),
-        [&](const tbb::blocked_range<uint32_t>& r) {
-          for (uint32_t tile = r.begin(); tile != r.end(); ++tile) {
-            const int64_t x0 = int64_t{tile % grid.tiles_x} * binning::kTileSize;
-            const int64_t y0 = int64_t{tile / grid.tiles_x} * binning::kTileSize;
-            const Box tile_box{x0, y0, x0 + binning::kTileSize - 1, y0 + binning::kTileSize - 1};
-            TileWriter writer{fb, pipeline, state.antialiased, tile_counters[tile]};
-            std::optional<RunWriter> runs;
-            if (use_runs) {
-              runs.emplace(fb, pipeline, shade, tile_counters[tile]);
-              runs->tile_base = size_t{tile} * binning::kTilePixels;
-            }
-            for (size_t c = 0; c < chunk_count; ++c) {
-              const LineScratch::Chunk& chunk = chunks[c];
-              const std::span<const uint32_t> list = chunk.bins.tile(tile);
-              for (size_t n = 0; n < list.size(); ++n) {
-                if (n + 4 < list.size()) {
-                  const char* ahead = reinterpret_cast<const char*>(&chunk.setups[list[n + 4]]);
-                  for (size_t line = 0; line < sizeof(LineSetup); line += 64)
-                    __builtin_prefetch(ahead + line);
-                }
-                raster_segment(chunk.setups[list[n]], tile_box, pipeline, state, writer,
-                               runs ? &*runs : nullptr);
-              }
-            }
-          }
-        });
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, bin_grid.tile_count(), 1),
+                      [&](const tbb::blocked_range<uint32_t>& r) {
+                        for (uint32_t tile = r.begin(); tile != r.end(); ++tile) {
+                          const int64_t x0 = int64_t{tile % bin_grid.tiles_x} * kLineTile;
+                          const int64_t y0 = int64_t{tile / bin_grid.tiles_x} * kLineTile;
+                          const Box tile_box{x0, y0, x0 + kLineTile - 1, y0 + kLineTile - 1};
+                          TileWriter writer{fb, pipeline, state.antialiased, tile_counters[tile]};
+                          std::optional<RunWriter> runs;
+                          if (use_runs) {
+                            runs.emplace(fb, pipeline, shade, tile_counters[tile]);
+                          }
+                          for (size_t c = 0; c < chunk_count; ++c) {
+                            const LineScratch::Chunk& chunk = chunks[c];
+                            const std::span<const uint32_t> list = chunk.bins.tile(tile);
+                            for (size_t n = 0; n < list.size(); ++n) {
+                              if (n + 4 < list.size()) {
+                                const char* ahead =
+                                    reinterpret_cast<const char*>(&chunk.setups[list[n + 4]]);
+                                for (size_t line = 0; line < sizeof(LineSetup); line += 64)
+                                  __builtin_prefetch(ahead + line);
+                              }
+                              raster_segment(chunk.setups[list[n]], tile_box, pipeline, state,
+                                             writer, runs ? &*runs : nullptr);
+                            }
+                          }
+                        }
+                      });
   });
   for (size_t c = 0; c < chunk_count; ++c)
     counters.bin_references += chunks[c].bins.references();
