@@ -399,8 +399,8 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
       // which no predictor learns.
       const DivisionStepper d(run);
       int64_t jq = run.base + run.sign * d.q, r = d.r;
-      const int64_t jq_carry = run.sign * (d.step_q + 1), sign = run.sign;
-      const int64_t r_step = d.step_r, den = d.den, j_lo = run.j_lo;
+      const int64_t jq_step = run.sign * d.step_q, jq_carry = jq_step + run.sign;
+      const int64_t r_step = d.step_r, r_wrap = d.step_r - d.den, j_lo = run.j_lo;
       const uint64_t j_span = static_cast<uint64_t>(run.j_hi - run.j_lo);
       size_t count = n;  // in a register for the loop
       for (int64_t i = run.i_lo; i <= run.i_hi;) {
@@ -413,9 +413,11 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
           major[count] = static_cast<int32_t>(i);
           minor[count] = static_cast<int32_t>(jq);
           count += static_cast<size_t>(static_cast<uint64_t>(jq - j_lo) <= j_span);
-          const int64_t carried = r + r_step, wrapped = carried - den;
-          jq += wrapped >= 0 ? jq_carry : jq_carry - sign;
-          r = wrapped >= 0 ? wrapped : carried;
+          // Selects, not a branch: the carry follows the slope's fraction.
+          const int64_t carried = r + r_step, wrapped = r + r_wrap;
+          const bool carry = __builtin_expect_with_probability(wrapped >= 0, 1, 0.5);
+          jq += carry ? jq_carry : jq_step;
+          r = carry ? wrapped : carried;
         }
       }
       n = count;
