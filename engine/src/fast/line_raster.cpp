@@ -221,8 +221,37 @@ void bresenham(const WindowSegment& seg, uint32_t bits, const Box& box, VisitRun
                       x_major ? box.y1 : box.x1, x_major, start_major});
 }
 
+// floor(v) for |v| < 2^63, without a library call.
+int64_t floor_to_int(double v) {
+  const int64_t t = static_cast<int64_t>(v);  // toward zero
+  return t - static_cast<int64_t>(v < static_cast<double>(t));
+}
+
+// A DDA line's columns [i_lo, i_hi] (rows, for a y-major line): y is the running sum at
+// column i_lo, as the lecture's loop reaches it from the start by adding m once per column;
+// the pixel is on row floor(y + 1/2), drawn when that is in [j_lo, j_hi].
+struct DdaSpan {
+  int64_t i_lo, i_hi;
+  double y, m;
+  int64_t j_lo, j_hi;
+  bool x_major;
+  int64_t start;
+};
+
 template <typename Visit>
-void dda(const WindowSegment& seg, uint32_t bits, const Box& box, Visit visit) {
+void for_each_pixel(const DdaSpan& span, Visit visit) {
+  double y = span.y;
+  for (int64_t i = span.i_lo; i <= span.i_hi; ++i, y += span.m) {
+    const int64_t j = floor_to_int(y + 0.5);
+    if (j >= span.j_lo && j <= span.j_hi) {
+      visit(span.x_major ? i : j, span.x_major ? j : i,
+            static_cast<uint32_t>(std::abs(i - span.start)));
+    }
+  }
+}
+
+template <typename VisitSpan>
+void dda(const WindowSegment& seg, uint32_t bits, const Box& box, VisitSpan visit_span) {
   int64_t x0 = seg.a.fx >> bits, y0 = seg.a.fy >> bits;
   int64_t x1 = seg.b.fx >> bits, y1 = seg.b.fy >> bits;
   const bool x_major = std::abs(x1 - x0) >= std::abs(y1 - y0);
@@ -230,14 +259,15 @@ void dda(const WindowSegment& seg, uint32_t bits, const Box& box, Visit visit) {
   if (!x_major) std::swap(x0, y0), std::swap(x1, y1);
   if (x0 > x1) std::swap(x0, x1), std::swap(y0, y1);
   const double m = x1 == x0 ? 0.0 : static_cast<double>(y1 - y0) / static_cast<double>(x1 - x0);
-  const int64_t lo = x_major ? box.x0 : box.y0, hi = std::min(x1, x_major ? box.x1 : box.y1);
+  const int64_t lo = std::max(x0, x_major ? box.x0 : box.y0);
+  const int64_t hi = std::min(x1, x_major ? box.x1 : box.y1);
+  if (lo > hi) return;
+  // The sum is the lecture's: one addition per column from the start, even before the box.
   double y = static_cast<double>(y0);
-  for (int64_t x = x0; x <= hi; ++x, y += m) {
-    if (x < lo) continue;
-    const int64_t r = static_cast<int64_t>(std::floor(y + 0.5));
-    const int64_t px = x_major ? x : r, py = x_major ? r : x;
-    if (box.contains(px, py)) visit(px, py, static_cast<uint32_t>(std::abs(x - start_major)));
-  }
+  for (int64_t x = x0; x < lo; ++x)
+    y += m;
+  visit_span(DdaSpan{lo, hi, y, m, x_major ? box.y0 : box.x0, x_major ? box.y1 : box.x1, x_major,
+                     start_major});
 }
 
 template <typename Visit>
@@ -422,6 +452,31 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
       }
       n = count;
     };
+    auto visit_span = [&](const DdaSpan& span) {
+      if (stippled) {
+        for_each_pixel(span, visit);
+        return;
+      }
+      int32_t* major = span.x_major ? xs : ys;
+      int32_t* minor = span.x_major ? ys : xs;
+      const uint64_t j_span = static_cast<uint64_t>(span.j_hi - span.j_lo);
+      double y = span.y;
+      size_t count = n;
+      for (int64_t i = span.i_lo; i <= span.i_hi;) {
+        if (count >= kLineRunPixels) {
+          runs->flush(sh, count);
+          count = 0;
+        }
+        const int64_t chunk_end = std::min(span.i_hi, i + int64_t{kLineRunPixels} - 1);
+        for (; i <= chunk_end; ++i, y += span.m) {
+          const int64_t j = floor_to_int(y + 0.5);
+          major[count] = static_cast<int32_t>(i);
+          minor[count] = static_cast<int32_t>(j);
+          count += static_cast<size_t>(static_cast<uint64_t>(j - span.j_lo) <= j_span);
+        }
+      }
+      n = count;
+    };
     switch (state.algorithm) {
       case LineAlgorithm::kDiamondExit:
         diamond_exit(seg, bits, box, visit, visit_run);
@@ -430,7 +485,7 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
         bresenham(seg, bits, box, visit_run);
         break;
       case LineAlgorithm::kDDA:
-        dda(seg, bits, box, visit);
+        dda(seg, bits, box, visit_span);
         break;
     }
     runs->flush(sh, n);
@@ -473,7 +528,7 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
       bresenham(seg, bits, box, visit_run);
       break;
     case LineAlgorithm::kDDA:
-      dda(seg, bits, box, visit);
+      dda(seg, bits, box, [&](const DdaSpan& span) { for_each_pixel(span, visit); });
       break;
   }
 }
