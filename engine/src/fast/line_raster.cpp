@@ -88,6 +88,12 @@ bool exits_diamond(int64_t ua, int64_t va, int64_t du, int64_t dv, int64_t h) {
   return false;
 }
 
+// floor(v) for |v| < 2^63, without a library call.
+int64_t floor_to_int(double v) {
+  const int64_t t = static_cast<int64_t>(v);  // toward zero
+  return t - static_cast<int64_t>(v < static_cast<double>(t));
+}
+
 int64_t floor_div(int64_t a, int64_t b) {  // b > 0
   return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
@@ -154,7 +160,7 @@ void diamond_exit(const WindowSegment& seg, uint32_t bits, const Box& box, Visit
     const double m = static_cast<double>(a_minor) + static_cast<double>(i * one + h - a_major) *
                                                         static_cast<double>(d_minor) /
                                                         static_cast<double>(d_major);
-    const int64_t j0 = static_cast<int64_t>(std::floor(m / static_cast<double>(one)));
+    const int64_t j0 = floor_to_int(m / static_cast<double>(one));
     for (int64_t j = std::max(j0 - 1, minor_lo); j <= std::min(j0 + 1, minor_hi); ++j) {
       const int64_t px = x_major ? i : j, py = x_major ? j : i;
       if (exits_diamond(ax - (px * one + h), ay - (py * one + h), dx, dy, h)) {
@@ -219,12 +225,6 @@ void bresenham(const WindowSegment& seg, uint32_t bits, const Box& box, VisitRun
   visit_run(ColumnRun{lo, hi, dx == 0 ? 0 : 2 * ady * (lo - x0) + dx - 1, dx == 0 ? 0 : 2 * ady,
                       dx == 0 ? 1 : 2 * dx, y0, y1 >= y0 ? 1 : -1, x_major ? box.y0 : box.x0,
                       x_major ? box.y1 : box.x1, x_major, start_major});
-}
-
-// floor(v) for |v| < 2^63, without a library call.
-int64_t floor_to_int(double v) {
-  const int64_t t = static_cast<int64_t>(v);  // toward zero
-  return t - static_cast<int64_t>(v < static_cast<double>(t));
 }
 
 // A DDA line's columns [i_lo, i_hi] (rows, for a y-major line): y is the running sum at
