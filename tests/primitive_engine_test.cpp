@@ -298,6 +298,29 @@ TEST(PrimitiveEngine, AntialiasedLinesMatchTheReference) {
       1, ColorFormat::kRGBA32F);
 }
 
+// Antialiased lines into RGBA8 (blended over what earlier lines wrote, the bytes rounded as the
+// reference rounds them) at one and four samples, without and with a depth test against the
+// lines' own depth, at two widths.
+TEST(PrimitiveEngine, AntialiasedLinesIntoRgba8MatchTheReference) {
+  const Soup soup = random_segments(9, 600);
+  for (float width : {1.0f, 2.5f}) {
+    for (bool depth_test : {false, true}) {
+      for (uint32_t samples : {1u, 4u}) {
+        SCOPED_TRACE(testing::Message() << "width " << width << ", depth test " << depth_test
+                                        << ", samples " << samples);
+        LineState state;
+        state.antialiased = true;
+        state.width = width;
+        PipelineState p = always();
+        if (depth_test) p.depth_compare = CompareOp::kLessEqual;
+        expect_engine_matches(
+            [&](Renderer& r, Framebuffer& fb) { r.draw_lines(fb, p, state, soup.input()); }, true,
+            samples);
+      }
+    }
+  }
+}
+
 TEST(PrimitiveEngine, WideLinesWithJoinsMatchTheReference) {
   for (LineJoin join : {LineJoin::kMiter, LineJoin::kRound, LineJoin::kBevel}) {
     SCOPED_TRACE(static_cast<int>(join));

@@ -2,6 +2,8 @@
 // hwy/foreach_target.h. Lanes are pixels of one run, in double precision: each lane computes
 // exactly what the reference's scalar code computes for its pixel (same operations in the same
 // order, contraction off), then converts to float and to unorm8 as to_unorm8 does.
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "engine/src/fast/line_kernel.hpp"
@@ -34,17 +36,38 @@ void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, siz
       const double qa = (1.0 - t) * sh.inv_wa, qb = t * sh.inv_wb;
       tc = qa + qb > 0.0 ? qb / (qa + qb) : t;
     }
-    uint32_t packed = 0;
-    for (int c = 0; c < 4; ++c) {
-      packed |= uint32_t{to_unorm8(static_cast<float>(sh.color[c] + tc * sh.dcolor[c]))} << (8 * c);
-    }
-    out.rgba[i] = packed;
     out.depth[i] = static_cast<float>(sh.z + t * sh.dz);
     const uint32_t px = static_cast<uint32_t>(x[i]), py = static_cast<uint32_t>(y[i]);
-    out.offset[i] =
+    const uint32_t offset =
         ((py >> binning::kTileSizeLog2) * out.tiles_x + (px >> binning::kTileSizeLog2)) *
             binning::kTilePixels +
         detail::in_tile(px, py);
+    out.offset[i] = offset;
+    float color[4];
+    for (int c = 0; c < 4; ++c)
+      color[c] = static_cast<float>(sh.color[c] + tc * sh.dcolor[c]);
+    if (sh.smooth) {
+      const double qx = static_cast<double>(x[i]) + 0.5 - sh.ax;
+      const double qy = static_cast<double>(y[i]) + 0.5 - sh.ay;
+      const double along = qx * sh.ux + qy * sh.uy;
+      const double across = std::abs(qx * sh.uy - qy * sh.ux);
+      const double c_across = std::clamp(sh.cover_reach - across, 0.0, 1.0);
+      const double c_along = std::clamp(std::min(along, sh.length - along) + 0.5, 0.0, 1.0);
+      const float coverage = static_cast<float>(c_across * c_along);
+      out.coverage[i] = coverage;
+      if (!(coverage > 0.0f)) continue;  // not drawn: dst is not read
+      const float a = std::clamp(color[3], 0.0f, 1.0f) * std::min(coverage, 1.0f);
+      float dst[4];
+      for (int c = 0; c < 4; ++c)
+        dst[c] = static_cast<float>((out.dst[offset] >> (8 * c)) & 0xFFu) / 255.0f;
+      for (int c = 0; c < 3; ++c)
+        color[c] = color[c] * a + dst[c] * (1.0f - a);
+      color[3] = a + dst[3] * (1.0f - a);
+    }
+    uint32_t packed = 0;
+    for (int c = 0; c < 4; ++c)
+      packed |= uint32_t{to_unorm8(color[c])} << (8 * c);
+    out.rgba[i] = packed;
   }
 }
 #else
@@ -72,6 +95,24 @@ HWY_INLINE hn::Vec<DD> line_t(DD dd, const LineShading& sh, const int32_t* x, co
       hn::Add(hn::Mul(hn::Sub(hn::Add(px, half), hn::Set(dd, sh.ax)), hn::Set(dd, sh.ex)),
               hn::Mul(hn::Sub(hn::Add(py, half), hn::Set(dd, sh.ay)), hn::Set(dd, sh.ey)));
   return hn::Min(hn::Max(hn::Mul(along, hn::Set(dd, sh.inv_len2)), hn::Zero(dd)), hn::Set(dd, 1.0));
+}
+
+// An antialiased line's coverage of the pixels at x[0..], y[0..] (one double vector), as
+// reference_lines.cpp computes it: across the line times along it.
+template <class DD>
+HWY_INLINE hn::Vec<DD> smooth_coverage(DD dd, const LineShading& sh, const int32_t* x,
+                                       const int32_t* y) {
+  const hn::Rebind<int32_t, DD> di;
+  const auto half = hn::Set(dd, 0.5), zero = hn::Zero(dd), one = hn::Set(dd, 1.0);
+  const auto qx = hn::Sub(hn::Add(hn::PromoteTo(dd, hn::LoadU(di, x)), half), hn::Set(dd, sh.ax));
+  const auto qy = hn::Sub(hn::Add(hn::PromoteTo(dd, hn::LoadU(di, y)), half), hn::Set(dd, sh.ay));
+  const auto ux = hn::Set(dd, sh.ux), uy = hn::Set(dd, sh.uy);
+  const auto along = hn::Add(hn::Mul(qx, ux), hn::Mul(qy, uy));
+  const auto across = hn::Abs(hn::Sub(hn::Mul(qx, uy), hn::Mul(qy, ux)));
+  const auto c_across = hn::Min(hn::Max(hn::Sub(hn::Set(dd, sh.cover_reach), across), zero), one);
+  const auto c_along = hn::Min(
+      hn::Max(hn::Add(hn::Min(along, hn::Sub(hn::Set(dd, sh.length), along)), half), zero), one);
+  return hn::Mul(c_across, c_along);
 }
 
 // The colour parameter: t, or with perspective t wb / ((1 - t) wa + t wb) where that is > 0.
@@ -103,6 +144,7 @@ void ShadeLinePixels(const LineShading& sh, const int32_t* x, const int32_t* y, 
   const hn::Repartition<double, decltype(df)> dd;
   const hn::RebindToSigned<decltype(df)> di;
   const hn::RebindToUnsigned<decltype(df)> du;
+  const hn::Half<decltype(df)> dfh;
   const size_t lanes = hn::Lanes(df), half_lanes = hn::Lanes(dd);
   const auto tile_mask = hn::Set(di, static_cast<int32_t>(binning::kTileSize - 1));
   const auto block_mask = hn::Set(di, static_cast<int32_t>(detail::kBlockSize - 1));
@@ -127,17 +169,38 @@ void ShadeLinePixels(const LineShading& sh, const int32_t* x, const int32_t* y, 
     const auto t_lo = line_t(dd, sh, x + i, y + i);
     const auto t_hi = line_t(dd, sh, x + i + half_lanes, y + i + half_lanes);
     const auto tc_lo = color_t(dd, sh, t_lo), tc_hi = color_t(dd, sh, t_hi);
-    const auto r =
-        unorm8_low_byte(df, lerp_to_float(df, dd, sh.color[0], sh.dcolor[0], tc_lo, tc_hi));
-    const auto g =
-        unorm8_low_byte(df, lerp_to_float(df, dd, sh.color[1], sh.dcolor[1], tc_lo, tc_hi));
-    const auto b =
-        unorm8_low_byte(df, lerp_to_float(df, dd, sh.color[2], sh.dcolor[2], tc_lo, tc_hi));
-    const auto a =
-        unorm8_low_byte(df, lerp_to_float(df, dd, sh.color[3], sh.dcolor[3], tc_lo, tc_hi));
+    auto r = lerp_to_float(df, dd, sh.color[0], sh.dcolor[0], tc_lo, tc_hi);
+    auto g = lerp_to_float(df, dd, sh.color[1], sh.dcolor[1], tc_lo, tc_hi);
+    auto b = lerp_to_float(df, dd, sh.color[2], sh.dcolor[2], tc_lo, tc_hi);
+    auto a = lerp_to_float(df, dd, sh.color[3], sh.dcolor[3], tc_lo, tc_hi);
+    if (sh.smooth) {
+      const auto coverage = hn::Combine(
+          df, hn::DemoteTo(dfh, smooth_coverage(dd, sh, x + i + half_lanes, y + i + half_lanes)),
+          hn::DemoteTo(dfh, smooth_coverage(dd, sh, x + i, y + i)));
+      hn::StoreU(coverage, df, out.coverage + i);
+      // Source over the framebuffer's colour, read where the pixel is drawn (other lanes read
+      // the tile's first pixel: their offsets may lie off the framebuffer).
+      const auto drawn =
+          hn::And(hn::Gt(coverage, hn::Zero(df)), hn::RebindMask(df, hn::FirstN(di, n - i)));
+      const auto dst =
+          hn::GatherIndex(du, out.dst, hn::IfThenElseZero(hn::RebindMask(di, drawn), offset));
+      const auto alpha = hn::Mul(hn::Min(hn::Max(a, hn::Zero(df)), hn::Set(df, 1.0f)),
+                                 hn::Min(coverage, hn::Set(df, 1.0f)));
+      const auto keep = hn::Sub(hn::Set(df, 1.0f), alpha);
+      const auto channel = [&](int shift) {
+        const auto byte = hn::And(hn::ShiftRightSame(dst, shift), hn::Set(du, 0xFFu));
+        return hn::Div(hn::ConvertTo(df, hn::BitCast(di, byte)), hn::Set(df, 255.0f));
+      };
+      r = hn::Add(hn::Mul(r, alpha), hn::Mul(channel(0), keep));
+      g = hn::Add(hn::Mul(g, alpha), hn::Mul(channel(8), keep));
+      b = hn::Add(hn::Mul(b, alpha), hn::Mul(channel(16), keep));
+      a = hn::Add(alpha, hn::Mul(channel(24), keep));
+    }
     // Shifting g, b and a left by 8 or more drops the exponent bits; r's are masked off.
-    hn::StoreU(hn::Or(hn::Or(hn::And(r, hn::Set(du, 0xFFu)), hn::ShiftLeft<8>(g)),
-                      hn::Or(hn::ShiftLeft<16>(b), hn::ShiftLeft<24>(a))),
+    hn::StoreU(hn::Or(hn::Or(hn::And(unorm8_low_byte(df, r), hn::Set(du, 0xFFu)),
+                             hn::ShiftLeft<8>(unorm8_low_byte(df, g))),
+                      hn::Or(hn::ShiftLeft<16>(unorm8_low_byte(df, b)),
+                             hn::ShiftLeft<24>(unorm8_low_byte(df, a)))),
                du, out.rgba + i);
     hn::StoreU(lerp_to_float(df, dd, sh.z, sh.dz, t_lo, t_hi), df, out.depth + i);
   }

@@ -23,9 +23,15 @@ struct LineShading {
   double z = 0, dz = 0;  // depth a.z + t (b.z - a.z)
   double color[4] = {0, 0, 0, 0};
   double dcolor[4] = {0, 0, 0, 0};  // float (b.c - a.c), as the reference subtracts
+  // Antialiased lines: coverage across (within cover_reach = width / 2 + 1/2 of the line along
+  // the unit direction (ux, uy)) times coverage along (within 1/2 beyond the ends, length
+  // apart), and the colour blended over the framebuffer's (source over).
+  bool smooth = false;
+  double ux = 0, uy = 0, cover_reach = 0, length = 0;
 };
 
-// Shades pixels (x[i], y[i]), i < n: rgba[i] holds the unorm8 colour (r in the low byte),
+// Shades pixels (x[i], y[i]), i < n: rgba[i] holds the unorm8 colour (r in the low byte; for
+// a smooth line, blended over dst[offset[i]] with coverage[i] as written when it is > 0),
 // depth[i] the interpolated depth before clamping and encoding, offset[i] the pixel's place in
 // a one-sample framebuffer's storage (FramebufferStorage::sample_index, with tiles_x storage
 // tiles per row). Reads and writes up to n rounded up to the vector width
@@ -34,6 +40,8 @@ struct LineRunOut {
   uint32_t* rgba;
   float* depth;
   uint32_t* offset;
+  float* coverage;      // smooth lines
+  const uint32_t* dst;  // smooth lines: the RGBA8 framebuffer read for blending
   uint32_t tiles_x;
 };
 using LineShadeFn = void (*)(const LineShading&, const int32_t* x, const int32_t* y, size_t n,

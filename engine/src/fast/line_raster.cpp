@@ -270,17 +270,19 @@ void dda(const WindowSegment& seg, uint32_t bits, const Box& box, VisitSpan visi
                      start_major});
 }
 
-template <typename Visit>
-void smooth(const WindowSegment& seg, float width, const Box& box, Visit visit) {
+// An antialiased line's rows: for each row of the box, the pixel centres that can lie within
+// half the width plus half a pixel of the line (reference_lines.cpp's interval), as
+// visit_row(py, x_lo, x_hi); the coverage decides which of them are drawn.
+template <typename VisitRow>
+void smooth_rows(const WindowSegment& seg, float width, const Box& box, VisitRow visit_row) {
   const double ax = seg.a.x, ay = seg.a.y, dx = seg.b.x - ax, dy = seg.b.y - ay;
   const double length = std::sqrt(dx * dx + dy * dy);
   if (!(length > 0.0)) return;
   const double ux = dx / length, uy = dy / length, half = 0.5 * width;
-  const double major = std::max(std::abs(dx), std::abs(dy));
   const double reach = half + 0.5;  // coverage is 0 at this distance across the line
   for (int64_t py = box.y0; py <= box.y1; ++py) {
     // Pixel centres with |(x - ax) uy - (y - ay) ux| < reach: an interval of x when uy != 0,
-    // widened by a pixel so that rounding never drops one; the coverage below decides.
+    // widened by a pixel so that rounding never drops one; the coverage decides.
     int64_t x_lo = box.x0, x_hi = box.x1;
     if (uy != 0.0) {
       const double base = (static_cast<double>(py) + 0.5 - ay) * ux;
@@ -288,6 +290,17 @@ void smooth(const WindowSegment& seg, float width, const Box& box, Visit visit) 
       x_lo = std::max(x_lo, static_cast<int64_t>(std::floor(std::min(e0, e1))) - 1);
       x_hi = std::min(x_hi, static_cast<int64_t>(std::ceil(std::max(e0, e1))) + 1);
     }
+    if (x_lo <= x_hi) visit_row(py, x_lo, x_hi);
+  }
+}
+
+template <typename Visit>
+void smooth(const WindowSegment& seg, float width, const Box& box, Visit visit) {
+  const double ax = seg.a.x, ay = seg.a.y, dx = seg.b.x - ax, dy = seg.b.y - ay;
+  const double length = std::sqrt(dx * dx + dy * dy);
+  const double ux = dx / length, uy = dy / length, half = 0.5 * width;
+  const double major = std::max(std::abs(dx), std::abs(dy));
+  smooth_rows(seg, width, box, [&](int64_t py, int64_t x_lo, int64_t x_hi) {
     for (int64_t px = x_lo; px <= x_hi; ++px) {
       const double qx = static_cast<double>(px) + 0.5 - ax, qy = static_cast<double>(py) + 0.5 - ay;
       const double along = qx * ux + qy * uy;
@@ -299,11 +312,12 @@ void smooth(const WindowSegment& seg, float width, const Box& box, Visit visit) 
       const double t = std::clamp(along / length, 0.0, 1.0);
       visit(px, py, static_cast<uint32_t>(std::floor(t * major)), static_cast<float>(coverage));
     }
-  }
+  });
 }
 
 // The shading of a segment (line_kernel.hpp), with the reference's operands.
-LineShading line_shading(const WindowSegment& seg, const PipelineState& pipeline) {
+LineShading line_shading(const WindowSegment& seg, const PipelineState& pipeline,
+                         const LineState& state) {
   LineShading sh;
   sh.ax = seg.a.x;
   sh.ay = seg.a.y;
@@ -317,6 +331,15 @@ LineShading line_shading(const WindowSegment& seg, const PipelineState& pipeline
   }
   sh.perspective =
       pipeline.interpolation == Interpolation::kPerspective && seg.a.inv_w != seg.b.inv_w;
+  if (state.antialiased) {
+    // The coverage of smooth() (reference_lines.cpp), per pixel in the kernel.
+    const double length = std::sqrt(sh.ex * sh.ex + sh.ey * sh.ey);
+    sh.smooth = true;
+    sh.length = length;
+    sh.ux = sh.ex / length;
+    sh.uy = sh.ey / length;
+    sh.cover_reach = 0.5 * state.width + 0.5;
+  }
   sh.inv_wa = seg.a.inv_w;
   sh.inv_wb = seg.b.inv_w;
   sh.z = seg.a.z;
@@ -341,20 +364,24 @@ struct RunWriter {
   alignas(64) uint32_t rgba[kLineRunCapacity];
   alignas(64) float depth[kLineRunCapacity];
   alignas(64) uint32_t offset[kLineRunCapacity];
+  alignas(64) float coverage[kLineRunCapacity];
 
   static bool applies(const detail::FramebufferStorage& fb, const PipelineState& pipeline,
                       const LineState& state) {
-    return !state.antialiased && fb.desc.samples == 1 &&
-           (fb.desc.color_format == ColorFormat::kRGBA8 || !pipeline.color_write);
+    return fb.desc.samples == 1 &&
+           (fb.desc.color_format == ColorFormat::kRGBA8 || !pipeline.color_write) &&
+           !(state.antialiased && state.stipple.pattern != 0xFFFF);
   }
 
   // Shades and writes pixels 0 .. n - 1 of the run.
   void flush(const LineShading& sh, size_t n) {
     if (n == 0) return;
-    shade(sh, x, y, n, LineRunOut{rgba, depth, offset, fb.grid.tiles_x});
     uint8_t* colour = fb.rgba8.data();
+    shade(sh, x, y, n,
+          LineRunOut{rgba, depth, offset, coverage, reinterpret_cast<const uint32_t*>(colour),
+                     fb.grid.tiles_x});
     const bool write_colour = pipeline.color_write;
-    if (!pipeline.depth_test) {
+    if (!pipeline.depth_test && !sh.smooth) {
       if (write_colour) {
         for (size_t i = 0; i < n; ++i)
           std::memcpy(colour + size_t{offset[i]} * 4, &rgba[i], 4);
@@ -365,26 +392,29 @@ struct RunWriter {
       return;
     }
     const double depth_scale = detail::depth_scale(fb.desc.depth_format);
-    uint64_t passed = 0;
+    uint64_t covered = 0, passed = 0;
     for (size_t i = 0; i < n; ++i) {
+      if (sh.smooth && !(coverage[i] > 0.0f)) continue;
+      ++covered;
       const size_t index = offset[i];
-      // The one sample sits at the pixel centre: depth + 0 (offsets) as TileWriter forms it.
-      const float z = detail::encode_depth(std::clamp(depth[i] + 0.0f, 0.0f, 1.0f), depth_scale);
-      if (!detail::depth_passes(pipeline.depth_compare, z, fb.depth[index])) continue;
-      ++passed;
-      if (pipeline.depth_write) {
-        fb.depth[index] = z;
-        if (fb.hiz_valid) {
-          // The block's Hi-Z bounds are stale: mark them for recomputation (block_kernel.cpp).
-          const size_t block =
-              index / detail::kBlockPixels;  // tile * kBlocksPerTile + block in tile
-          fb.hiz_min[block] = std::numeric_limits<float>::infinity();
-          fb.hiz_max[block] = -std::numeric_limits<float>::infinity();
+      if (pipeline.depth_test) {
+        // The one sample sits at the pixel centre: depth + 0 (offsets) as TileWriter forms it.
+        const float z = detail::encode_depth(std::clamp(depth[i] + 0.0f, 0.0f, 1.0f), depth_scale);
+        if (!detail::depth_passes(pipeline.depth_compare, z, fb.depth[index])) continue;
+        if (pipeline.depth_write) {
+          fb.depth[index] = z;
+          if (fb.hiz_valid) {
+            // The block's Hi-Z bounds are stale: mark them for recomputation (block_kernel.cpp).
+            const size_t block = index / detail::kBlockPixels;  // tile * 64 + block in tile
+            fb.hiz_min[block] = std::numeric_limits<float>::infinity();
+            fb.hiz_max[block] = -std::numeric_limits<float>::infinity();
+          }
         }
       }
+      ++passed;
       if (write_colour) std::memcpy(colour + index * 4, &rgba[i], 4);
     }
-    counters.samples_covered += n;
+    counters.samples_covered += covered;
     counters.samples_passed += passed;
     if (write_colour) counters.pixels_shaded += passed;
   }
@@ -402,10 +432,26 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
     return ((state.stipple.pattern >> ((n / state.stipple.factor) % 16)) & 1u) != 0;
   };
   if (runs != nullptr) {
-    const LineShading sh = line_shading(seg, pipeline);
+    const LineShading sh = line_shading(seg, pipeline, state);
     int32_t* xs = runs->x;
     int32_t* ys = runs->y;
     size_t n = 0;  // pixels in the run (a local, so the walk keeps it in a register)
+    if (state.antialiased) {
+      // Every pixel centre of a row's interval: the kernel computes the coverage and the
+      // writes skip the pixels it leaves uncovered.
+      smooth_rows(seg, state.width, box, [&](int64_t py, int64_t x_lo, int64_t x_hi) {
+        for (int64_t px = x_lo; px <= x_hi; ++px) {
+          xs[n] = static_cast<int32_t>(px);
+          ys[n] = static_cast<int32_t>(py);
+          if (++n >= kLineRunPixels) {
+            runs->flush(sh, n);
+            n = 0;
+          }
+        }
+      });
+      runs->flush(sh, n);
+      return;
+    }
     auto visit = [&](int64_t px, int64_t py, uint32_t s) {
       if (stippled && !stipple_on(s)) return;
       xs[n] = static_cast<int32_t>(px);
