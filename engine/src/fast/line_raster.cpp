@@ -280,15 +280,17 @@ void smooth_rows(const WindowSegment& seg, float width, const Box& box, VisitRow
   if (!(length > 0.0)) return;
   const double ux = dx / length, uy = dy / length, half = 0.5 * width;
   const double reach = half + 0.5;  // coverage is 0 at this distance across the line
+  // Pixel centres with |(x - ax) uy - (y - ay) ux| < reach: an interval of x when uy != 0,
+  // widened by a pixel, which holds every pixel the coverage can draw (the reference's
+  // interval, computed with a reciprocal: its rounding is far below the pixel of margin).
+  const double inv_uy = uy != 0.0 ? 1.0 / uy : 0.0;
   for (int64_t py = box.y0; py <= box.y1; ++py) {
-    // Pixel centres with |(x - ax) uy - (y - ay) ux| < reach: an interval of x when uy != 0,
-    // widened by a pixel so that rounding never drops one; the coverage decides.
     int64_t x_lo = box.x0, x_hi = box.x1;
     if (uy != 0.0) {
       const double base = (static_cast<double>(py) + 0.5 - ay) * ux;
-      const double e0 = (base - reach) / uy + ax - 0.5, e1 = (base + reach) / uy + ax - 0.5;
-      x_lo = std::max(x_lo, static_cast<int64_t>(std::floor(std::min(e0, e1))) - 1);
-      x_hi = std::min(x_hi, static_cast<int64_t>(std::ceil(std::max(e0, e1))) + 1);
+      const double e0 = (base - reach) * inv_uy + ax - 0.5, e1 = (base + reach) * inv_uy + ax - 0.5;
+      x_lo = std::max(x_lo, floor_to_int(std::min(e0, e1)) - 1);
+      x_hi = std::min(x_hi, -floor_to_int(-std::max(e0, e1)) + 1);
     }
     if (x_lo <= x_hi) visit_row(py, x_lo, x_hi);
   }
