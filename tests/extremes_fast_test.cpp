@@ -114,6 +114,13 @@ TEST(ExtremesFast, NaNAndInfInAnyCoordinateAreRejectedNamingTheVertex) {
   }
 }
 
+TEST(ExtremesFast, NaNAndInfVerticesAreCulledAndCountedWhenAsked) {
+  for (const FastConfig& config : fast_configs({2})) {
+    SCOPED_TRACE(config.name());
+    expect_non_finite_culled(config.options());
+  }
+}
+
 // Bytes the process's heap holds in live allocations (all malloc arenas and mmapped blocks;
 // under AddressSanitizer, its allocator's count).
 size_t heap_in_use() {

@@ -76,5 +76,9 @@ TEST(ExtremesReference, NaNAndInfInAnyCoordinateAreRejectedNamingTheVertex) {
   expect_non_finite_rejected(reference_options());
 }
 
+TEST(ExtremesReference, NaNAndInfVerticesAreCulledAndCountedWhenAsked) {
+  expect_non_finite_culled(reference_options());
+}
+
 }  // namespace
 }  // namespace tessera::extremes

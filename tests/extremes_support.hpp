@@ -973,6 +973,71 @@ inline void expect_non_finite_rejected(const RendererOptions& options) {
   }
 }
 
+// With NonFiniteVertices::kCull, the triangles that use a vertex holding a NaN or an infinity
+// (in its position or its colour) are dropped and counted, and the rest draw exactly what an
+// index list without them draws: an indexed fan whose ring vertices are each shared by two
+// triangles, one bad value at a time; and a bad centre, which every triangle uses.
+inline void expect_non_finite_culled(RendererOptions options) {
+  const FramebufferDesc desc{40, 24, 4, ColorFormat::kRGBA8};
+  std::vector<Float4> positions = {clip(0.1, -0.2, 0.5, 1)};
+  for (const Float4& p : ring(9, 3.0, 0.2, [](size_t k) { return spread_w(k); }))
+    positions.push_back(p);
+  const uint32_t ring_size = static_cast<uint32_t>(positions.size()) - 1;
+  std::vector<uint32_t> indices;
+  for (uint32_t i = 0; i < ring_size; ++i)
+    indices.insert(indices.end(), {0, 1 + i, 1 + (i + 1) % ring_size});
+  std::vector<float> colors;
+  for (size_t v = 0; v < positions.size(); ++v) {
+    const std::array<float, 4> rgba = id_color(v);
+    colors.insert(colors.end(), rgba.begin(), rgba.end());
+  }
+  const float values[] = {std::numeric_limits<float>::quiet_NaN(),
+                          std::numeric_limits<float>::infinity(),
+                          -std::numeric_limits<float>::infinity()};
+  for (uint32_t bad : {0u, 4u}) {
+    for (int component = 0; component < 8; ++component) {  // x, y, z, w, r, g, b, a
+      for (float value : values) {
+        SCOPED_TRACE("vertex " + std::to_string(bad) + ", component " + std::to_string(component) +
+                     " = " + std::to_string(value));
+        std::vector<Float4> bad_positions = positions;
+        std::vector<float> bad_colors = colors;
+        if (component < 4) {
+          (&bad_positions[bad].x)[component] = value;
+        } else {
+          bad_colors[bad * 4 + static_cast<size_t>(component - 4)] = value;
+        }
+        std::vector<uint32_t> good;
+        for (size_t t = 0; t < indices.size(); t += 3) {
+          if (indices[t] != bad && indices[t + 1] != bad && indices[t + 2] != bad)
+            good.insert(good.end(), indices.begin() + t, indices.begin() + t + 3);
+        }
+        const uint64_t dropped = (indices.size() - good.size()) / 3;
+        EXPECT_EQ(dropped, bad == 0 ? ring_size : 2u);
+
+        options.non_finite = NonFiniteVertices::kCull;
+        Renderer culling(options);
+        Framebuffer fb(desc);
+        fb.clear_color({0.25f, 0.5f, 0.75f, 1.0f});
+        culling.draw(fb, PipelineState{}, {bad_positions, bad_colors, 4, indices});
+        EXPECT_EQ(culling.counters().triangles_invalid, dropped);
+
+        options.non_finite = NonFiniteVertices::kError;
+        Renderer plain(options);
+        Framebuffer expected(desc);
+        expected.clear_color({0.25f, 0.5f, 0.75f, 1.0f});
+        if (!good.empty()) plain.draw(expected, PipelineState{}, {positions, colors, 4, good});
+        EXPECT_EQ(plain.counters().triangles_invalid, 0u);
+        EXPECT_EQ(culling.counters().triangles_submitted, plain.counters().triangles_submitted);
+        EXPECT_EQ(fb.read_rgba8(), expected.read_rgba8());
+        EXPECT_EQ(fb.read_sample_depth(), expected.read_sample_depth());
+        if (bad != 0) {
+          EXPECT_GT(culling.counters().samples_passed, 0u);
+        }
+      }
+    }
+  }
+}
+
 // --- The largest framebuffer ------------------------------------------------------------------
 
 // 16384 x 16384 with one sample of RGBA8 colour and float depth: 2 GiB of framebuffer, plus

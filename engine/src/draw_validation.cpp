@@ -55,7 +55,7 @@ bool all_finite(std::span<const Float4> positions) {
 }  // namespace
 
 void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
-                       const DrawInput& input) {
+                       const DrawInput& input, bool finite_values) {
   check_enum(pipeline.depth_compare, CompareOp::kAlways, "depth_compare");
   check_enum(pipeline.cull, CullMode::kBack, "cull");
   check_enum(pipeline.front_face, FrontFace::kClockwise, "front_face");
@@ -97,6 +97,7 @@ void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
       }
     }
   }
+  if (!finite_values) return;
   // Branch-free scans first (they vectorize); the loops that name the culprit run only when
   // something is not finite.
   const bool positions_finite = all_finite(input.positions);
@@ -117,8 +118,21 @@ void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
   }
 }
 
-void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
-                   const DrawInput& input) {
+std::vector<bool> finite_vertices(const DrawInput& input) {
+  if (all_finite(input.positions) && all_finite(input.attributes)) return {};
+  std::vector<bool> finite(input.positions.size());
+  for (size_t v = 0; v < finite.size(); ++v) {
+    const Float4& p = input.positions[v];
+    bool ok = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w);
+    for (uint32_t a = 0; a < input.attribute_count; ++a)
+      ok = ok && std::isfinite(input.attributes[v * input.attribute_count + a]);
+    finite[v] = ok;
+  }
+  return finite;
+}
+
+void validate_draw(const Framebuffer& target, const PipelineState& pipeline, const DrawInput& input,
+                   bool finite_values) {
   if (input.indices.empty()) {
     if (input.positions.size() % 3 != 0) {
       fail(ErrorCode::kInvalidInput,
@@ -129,7 +143,7 @@ void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
     fail(ErrorCode::kInvalidInput, "a triangle list needs a multiple of 3 indices, got " +
                                        std::to_string(input.indices.size()));
   }
-  validate_vertices(target, pipeline, input);
+  validate_vertices(target, pipeline, input, finite_values);
 }
 
 namespace {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "tessera/framebuffer.hpp"
 #include "tessera/pipeline.hpp"
@@ -15,13 +16,19 @@ namespace tessera {
 // Throws Error(kInvalidArgument) for pipeline state that is out of range or does not fit the
 // framebuffer, Error(kInvalidInput) for inconsistent sizes, an index out of range, or a
 // position or attribute that is NaN or infinite.
-void validate_draw(const Framebuffer& target, const PipelineState& pipeline,
-                   const DrawInput& input);
+// With finite_values false, NaN and infinite values pass (NonFiniteVertices::kCull drops
+// their triangles after).
+void validate_draw(const Framebuffer& target, const PipelineState& pipeline, const DrawInput& input,
+                   bool finite_values = true);
 
 // What validate_draw checks except the triangle list's vertex count: the pipeline state,
-// attribute sizes, index range and finite values. Used by every kind of draw.
+// attribute sizes, index range and (with finite_values) finite values. Used by every kind of
+// draw.
 void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
-                       const DrawInput& input);
+                       const DrawInput& input, bool finite_values = true);
+
+// Per vertex, whether its position and attributes are all finite; empty when every vertex is.
+std::vector<bool> finite_vertices(const DrawInput& input);
 
 // The draws of points, lines and polygons: their state (Error(kInvalidArgument) naming the
 // field), their vertex count (a line list needs pairs; polygon contour sizes must add up to the

@@ -41,6 +41,9 @@ RendererOptions checked(const RendererOptions& o) {
     throw Error(ErrorCode::kInvalidArgument,
                 "bin tile size " + std::to_string(o.bin_tile_size) + " is not one of 32, 64, 128");
   }
+  if (o.non_finite != NonFiniteVertices::kError && o.non_finite != NonFiniteVertices::kCull) {
+    throw Error(ErrorCode::kInvalidArgument, "renderer non_finite is not a NonFiniteVertices");
+  }
   return o;
 }
 
@@ -82,8 +85,36 @@ void Renderer::reset_counters() noexcept {
 }
 
 void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input) {
-  validate_draw(target, pipeline, input);
-  draw_triangles(detail::FramebufferAccess::storage(target), pipeline, input);
+  const bool cull_non_finite = impl_->options.non_finite == NonFiniteVertices::kCull;
+  validate_draw(target, pipeline, input, !cull_non_finite);
+  detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
+  if (!cull_non_finite) {
+    draw_triangles(storage, pipeline, input);
+    return;
+  }
+  const std::vector<bool> finite = finite_vertices(input);
+  if (finite.empty()) {
+    draw_triangles(storage, pipeline, input);
+    return;
+  }
+  // The triangles whose three vertices are finite, as an index list into the caller's data.
+  const size_t triangles =
+      (input.indices.empty() ? input.positions.size() : input.indices.size()) / 3;
+  std::vector<uint32_t> kept;
+  kept.reserve(triangles * 3);
+  for (size_t t = 0; t < triangles; ++t) {
+    uint32_t v[3];
+    for (size_t k = 0; k < 3; ++k)
+      v[k] = input.indices.empty() ? static_cast<uint32_t>(3 * t + k) : input.indices[3 * t + k];
+    if (finite[v[0]] && finite[v[1]] && finite[v[2]]) {
+      kept.insert(kept.end(), v, v + 3);
+    } else {
+      ++impl_->counters.triangles_invalid;
+    }
+  }
+  DrawInput valid = input;
+  valid.indices = kept;
+  if (!kept.empty()) draw_triangles(storage, pipeline, valid);
 }
 
 void Renderer::draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,

@@ -30,6 +30,14 @@ enum class SimdTarget { kAuto, kScalar, kSSE4, kAVX2, kAVX512, kNEON, kSVE };
 // over very many tiles under a tiny budget) is binned anyway, exceeding it by that triangle.
 inline constexpr uint64_t kDefaultBinMemoryBudget = uint64_t{256} << 20;
 
+// A triangle draw's answer to non-finite input (a NaN or an infinity in a vertex's position or
+// attributes). kError, the default, rejects the draw with Error(kInvalidInput) naming the first
+// such vertex, before anything is drawn. kCull draws the rest: the triangles that use such a
+// vertex are dropped and counted (Counters::triangles_invalid), as a renderer fed by a
+// simulation that may produce the odd bad vertex wants. Points, lines and polygons always
+// reject non-finite input.
+enum class NonFiniteVertices : uint8_t { kError, kCull };
+
 struct RendererOptions {
   uint32_t threads = 1;  // worker threads of the renderer's arena; 1 = fully serial, 0 = all cores
   Backend backend = Backend::kFast;
@@ -48,6 +56,8 @@ struct RendererOptions {
   // each: 32, 64 or 128. Smaller tiles balance threads better and read less per task; larger
   // ones bin fewer references per triangle (docs/TRADEOFFS.md).
   uint32_t bin_tile_size = 64;
+  // What draw() does with a vertex whose position or attributes hold a NaN or an infinity.
+  NonFiniteVertices non_finite = NonFiniteVertices::kError;
 };
 
 // One draw call's vertex data, all in caller-owned memory that the renderer only reads.
@@ -61,13 +71,15 @@ struct DrawInput {
   std::span<const uint32_t> indices;
 };
 
-// Counts of what the renderer did since construction or the last reset_counters().
 // Counts of what the renderer did since construction or the last reset_counters(). The
 // triangle counts are per piece after clipping; the block and bin counts come from the fast
 // engine only (the reference has neither).
 struct Counters {
   uint64_t triangles_submitted = 0;
-  uint64_t triangles_culled = 0;   // back-face, front-face, zero area, or outside the view
+  uint64_t triangles_culled = 0;  // back-face, front-face, zero area, or outside the view
+  // Triangles dropped before setup for a non-finite vertex (NonFiniteVertices::kCull); not
+  // counted as submitted.
+  uint64_t triangles_invalid = 0;
   uint64_t triangles_clipped = 0;  // crossed a clip plane and were cut
   uint64_t triangles_rasterized = 0;
   uint64_t bin_references = 0;   // (triangle, tile) pairs binned
