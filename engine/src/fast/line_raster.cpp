@@ -463,67 +463,61 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
         n = 0;
       }
     };
+    // Appends pixel (i, row) of every column i in [i_lo, i_hi] whose row is in [j_lo, j_hi],
+    // without a branch (a column's entry is written and kept or overwritten), in chunks that
+    // fit the run arrays; next_row() gives the column's row and moves to the next column.
+    auto append_columns = [&](bool x_major, int64_t i_lo, int64_t i_hi, int64_t j_lo, int64_t j_hi,
+                              auto next_row) {
+      int32_t* major = x_major ? xs : ys;
+      int32_t* minor = x_major ? ys : xs;
+      const uint64_t j_span = static_cast<uint64_t>(j_hi - j_lo);
+      size_t count = n;  // in a register for the loop
+      for (int64_t i = i_lo; i <= i_hi;) {
+        if (count >= kLineRunPixels) {
+          runs->flush(sh, count);
+          count = 0;
+        }
+        const int64_t chunk_end = std::min(i_hi, i + int64_t{kLineRunPixels} - 1);
+        for (; i <= chunk_end; ++i) {
+          const int64_t j = next_row();
+          major[count] = static_cast<int32_t>(i);
+          minor[count] = static_cast<int32_t>(j);
+          count += static_cast<size_t>(static_cast<uint64_t>(j - j_lo) <= j_span);
+        }
+      }
+      n = count;
+    };
     auto visit_run = [&](const ColumnRun& run) {
       if (stippled) {
         for_each_pixel(run, visit);
         return;
       }
-      // Every column is written and kept when its row is in the box (no branch), in chunks
-      // that fit the run arrays.
-      int32_t* major = run.x_major ? xs : ys;
-      int32_t* minor = run.x_major ? ys : xs;
-      // The row jq = base + sign q steps by sign (step_q + carry). The carry is arithmetic
-      // (the sign bit of r + step_r - den), not a branch: it follows the slope's fraction,
-      // which no predictor learns.
+      // The row jq = base + sign q steps by sign (step_q + carry). The carry follows the
+      // slope's fraction, which a predictor learns poorly: selects, not a branch.
       const DivisionStepper d(run);
       int64_t jq = run.base + run.sign * d.q, r = d.r;
       const int64_t jq_step = run.sign * d.step_q, jq_carry = jq_step + run.sign;
-      const int64_t r_step = d.step_r, r_wrap = d.step_r - d.den, j_lo = run.j_lo;
-      const uint64_t j_span = static_cast<uint64_t>(run.j_hi - run.j_lo);
-      size_t count = n;  // in a register for the loop
-      for (int64_t i = run.i_lo; i <= run.i_hi;) {
-        if (count >= kLineRunPixels) {
-          runs->flush(sh, count);
-          count = 0;
-        }
-        const int64_t chunk_end = std::min(run.i_hi, i + int64_t{kLineRunPixels} - 1);
-        for (; i <= chunk_end; ++i) {
-          major[count] = static_cast<int32_t>(i);
-          minor[count] = static_cast<int32_t>(jq);
-          count += static_cast<size_t>(static_cast<uint64_t>(jq - j_lo) <= j_span);
-          // Selects, not a branch: the carry follows the slope's fraction.
-          const int64_t carried = r + r_step, wrapped = r + r_wrap;
-          const bool carry = __builtin_expect_with_probability(wrapped >= 0, 1, 0.5);
-          jq += carry ? jq_carry : jq_step;
-          r = carry ? wrapped : carried;
-        }
-      }
-      n = count;
+      const int64_t r_step = d.step_r, r_wrap = d.step_r - d.den;
+      append_columns(run.x_major, run.i_lo, run.i_hi, run.j_lo, run.j_hi, [&] {
+        const int64_t j = jq;
+        const int64_t carried = r + r_step, wrapped = r + r_wrap;
+        const bool carry = __builtin_expect_with_probability(wrapped >= 0, 1, 0.5);
+        jq += carry ? jq_carry : jq_step;
+        r = carry ? wrapped : carried;
+        return j;
+      });
     };
     auto visit_span = [&](const DdaSpan& span) {
       if (stippled) {
         for_each_pixel(span, visit);
         return;
       }
-      int32_t* major = span.x_major ? xs : ys;
-      int32_t* minor = span.x_major ? ys : xs;
-      const uint64_t j_span = static_cast<uint64_t>(span.j_hi - span.j_lo);
       double y = span.y;
-      size_t count = n;
-      for (int64_t i = span.i_lo; i <= span.i_hi;) {
-        if (count >= kLineRunPixels) {
-          runs->flush(sh, count);
-          count = 0;
-        }
-        const int64_t chunk_end = std::min(span.i_hi, i + int64_t{kLineRunPixels} - 1);
-        for (; i <= chunk_end; ++i, y += span.m) {
-          const int64_t j = floor_to_int(y + 0.5);
-          major[count] = static_cast<int32_t>(i);
-          minor[count] = static_cast<int32_t>(j);
-          count += static_cast<size_t>(static_cast<uint64_t>(j - span.j_lo) <= j_span);
-        }
-      }
-      n = count;
+      append_columns(span.x_major, span.i_lo, span.i_hi, span.j_lo, span.j_hi, [&] {
+        const int64_t j = floor_to_int(y + 0.5);
+        y += span.m;
+        return j;
+      });
     };
     switch (state.algorithm) {
       case LineAlgorithm::kDiamondExit:
