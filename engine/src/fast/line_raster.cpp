@@ -270,6 +270,24 @@ void dda(const WindowSegment& seg, uint32_t bits, const Box& box, VisitSpan visi
                      start_major});
 }
 
+// A one-pixel line's pixels in the box by its rule: single pixels (the ends of diamond-exit
+// lines) to visit, inner columns as a ColumnRun to visit_run, DDA columns as a DdaSpan.
+template <typename Visit, typename VisitRun, typename VisitSpan>
+void walk(LineAlgorithm algorithm, const WindowSegment& seg, uint32_t bits, const Box& box,
+          Visit visit, VisitRun visit_run, VisitSpan visit_span) {
+  switch (algorithm) {
+    case LineAlgorithm::kDiamondExit:
+      diamond_exit(seg, bits, box, visit, visit_run);
+      break;
+    case LineAlgorithm::kBresenham:
+      bresenham(seg, bits, box, visit_run);
+      break;
+    case LineAlgorithm::kDDA:
+      dda(seg, bits, box, visit_span);
+      break;
+  }
+}
+
 // An antialiased line's rows: for each row of the box, the pixel centres that can lie within
 // half the width plus half a pixel of the line (reference_lines.cpp's interval), as
 // visit_row(py, x_lo, x_hi); the coverage decides which of them are drawn.
@@ -519,17 +537,7 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
         return j;
       });
     };
-    switch (state.algorithm) {
-      case LineAlgorithm::kDiamondExit:
-        diamond_exit(seg, bits, box, visit, visit_run);
-        break;
-      case LineAlgorithm::kBresenham:
-        bresenham(seg, bits, box, visit_run);
-        break;
-      case LineAlgorithm::kDDA:
-        dda(seg, bits, box, visit_span);
-        break;
-    }
+    walk(state.algorithm, seg, bits, box, visit, visit_run, visit_span);
     runs->flush(sh, n);
     return;
   }
@@ -561,18 +569,10 @@ void raster_segment(const LineSetup& setup, const Box& tile, const PipelineState
     return;
   }
   auto visit = [&](int64_t x, int64_t y, uint32_t s) { shade(x, y, s, 1.0f); };
-  auto visit_run = [&](const ColumnRun& run) { for_each_pixel(run, visit); };
-  switch (state.algorithm) {
-    case LineAlgorithm::kDiamondExit:
-      diamond_exit(seg, bits, box, visit, visit_run);
-      break;
-    case LineAlgorithm::kBresenham:
-      bresenham(seg, bits, box, visit_run);
-      break;
-    case LineAlgorithm::kDDA:
-      dda(seg, bits, box, [&](const DdaSpan& span) { for_each_pixel(span, visit); });
-      break;
-  }
+  walk(
+      state.algorithm, seg, bits, box, visit,
+      [&](const ColumnRun& run) { for_each_pixel(run, visit); },
+      [&](const DdaSpan& span) { for_each_pixel(span, visit); });
 }
 
 // Cohen-Sutherland against the viewport grown by the line's reach (line_clip.hpp); false when
