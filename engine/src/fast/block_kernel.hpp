@@ -1,7 +1,8 @@
 // The SIMD raster kernel: one triangle over the 8x8-pixel blocks it touches in one tile, with
 // the hierarchical block tests, Hi-Z, per-sample coverage, the early depth test, shading once
-// per pixel and the colour write. Written once against Highway and compiled for every target
-// (block_kernel.cpp); a draw picks the instance for its target and state, so a depth-only draw
+// per pixel and the colour write. Written once against Highway (block_kernel-inl.h) and
+// compiled for every target, one source per depth mode (block_kernel_depth_*.cpp); a draw picks
+// the instance for its target and state from block_kernel.cpp's table, so a depth-only draw
 // touches no colour and a 1-sample draw tests no sample masks (ARCHITECTURE.md section 5).
 #pragma once
 

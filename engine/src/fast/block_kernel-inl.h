@@ -1,0 +1,584 @@
+// The raster kernel, written once against Highway. Highway's -inl.h convention: the guard
+// below toggles once per target, so a source that sets HWY_TARGET_INCLUDE and includes
+// hwy/foreach_target.h compiles this code for every SIMD target (the Embree / Masked Occlusion
+// Culling per-ISA pattern). One source per depth mode (block_kernel_depth_*.cpp) instantiates
+// it, so the three compile in parallel; block_kernel.cpp gathers them into the kernel table.
+//
+// For one triangle in one tile it walks the 8x8 blocks under the triangle's bounding box. Each
+// block is classified by the edge functions at its corners (Abrash 2009: an edge's extremes
+// over a rectangle lie at two corners): outside an edge (rejected), inside all three (accepted:
+// no edge tests), or partial; then Hi-Z may reject it or prove every sample passes. Lanes are
+// the block's pixels in row-major order, only the rows the triangle touches; each sample is a
+// pass over the lanes with its own edge and depth offsets. Edge functions step exactly in int32
+// (bound in block_kernel.hpp). Planes are evaluated as base + (gx * x + gy * y) from the block
+// corner in the same order on every target, and contraction is off, so every target writes
+// the same bytes.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "binning/tile_grid.hpp"
+#include "engine/src/fast/block_kernel.hpp"
+#include "engine/src/framebuffer_storage.hpp"
+
+// Per-target include guard: defined and undefined in turn as foreach_target.h toggles
+// HWY_TARGET_TOGGLE, so each target's pass reads the code below once.
+#if defined(TESSERA_ENGINE_SRC_FAST_BLOCK_KERNEL_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef TESSERA_ENGINE_SRC_FAST_BLOCK_KERNEL_INL_H_
+#undef TESSERA_ENGINE_SRC_FAST_BLOCK_KERNEL_INL_H_
+#else
+#define TESSERA_ENGINE_SRC_FAST_BLOCK_KERNEL_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace tessera::fast::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace {
+
+constexpr size_t kSamplePlane = binning::kTilePixels;  // values between two samples' planes
+using detail::kBlocksPerTileSide;
+
+// Pixel coordinates of the 64 lanes of a block, row-major.
+struct PixelTables {
+  alignas(64) int32_t x[64];
+  alignas(64) int32_t y[64];
+  alignas(64) float fx[64];
+  alignas(64) float fy[64];
+  constexpr PixelTables() : x(), y(), fx(), fy() {
+    for (int i = 0; i < 64; ++i) {
+      x[i] = i & 7;
+      y[i] = i >> 3;
+      fx[i] = static_cast<float>(i & 7);
+      fy[i] = static_cast<float>(i >> 3);
+    }
+  }
+};
+constexpr PixelTables kPixels;
+
+template <class D>
+HWY_INLINE auto all_lanes(D d) {
+  return hn::FirstN(d, hn::Lanes(d));
+}
+
+template <class D, class V>
+HWY_INLINE auto depth_passes(D d, CompareOp op, V incoming, V stored) {
+  switch (op) {
+    case CompareOp::kNever:
+      return hn::FirstN(d, 0);
+    case CompareOp::kLess:
+      return hn::Lt(incoming, stored);
+    case CompareOp::kEqual:
+      return hn::Eq(incoming, stored);
+    case CompareOp::kLessEqual:
+      return hn::Le(incoming, stored);
+    case CompareOp::kGreater:
+      return hn::Gt(incoming, stored);
+    case CompareOp::kNotEqual:
+      return hn::Ne(incoming, stored);
+    case CompareOp::kGreaterEqual:
+      return hn::Ge(incoming, stored);
+    case CompareOp::kAlways:
+      break;
+  }
+  return all_lanes(d);
+}
+
+// base + (gx * x + gy * y) at the lanes' pixels.
+template <class DF, class VF>
+HWY_INLINE VF plane_at(DF df, VF fx, VF fy, float base, float gx, float gy) {
+  return hn::Add(hn::Set(df, base),
+                 hn::Add(hn::Mul(fx, hn::Set(df, gx)), hn::Mul(fy, hn::Set(df, gy))));
+}
+
+// Float colour to unorm8 as to_unorm8 does for finite values: clamp to [0, 1], then
+// truncate(c * 255 + 0.5) (multiply, then add: never fused, the build forbids contraction).
+template <class DF, class VF>
+HWY_INLINE auto to_unorm8(DF df, VF c) {
+  const hn::RebindToUnsigned<DF> du;
+  const auto clamped = hn::Min(hn::Max(c, hn::Zero(df)), hn::Set(df, 1.0f));
+  const auto scaled = hn::Add(hn::Mul(clamped, hn::Set(df, 255.0f)), hn::Set(df, 0.5f));
+  return hn::BitCast(du, hn::ConvertTo(hn::RebindToSigned<DF>(), scaled));
+}
+
+enum class HizVerdict { kTest, kReject, kAccept };
+
+// Whether every sample of a block fails (reject) or passes (accept) the depth test, from the
+// block's depth bounds and the triangle's depth range over it.
+HizVerdict hiz_test(CompareOp op, float tri_lo, float tri_hi, float block_min, float block_max) {
+  switch (op) {
+    case CompareOp::kLess:
+      if (tri_lo >= block_max) return HizVerdict::kReject;
+      if (tri_hi < block_min) return HizVerdict::kAccept;
+      break;
+    case CompareOp::kLessEqual:
+      if (tri_lo > block_max) return HizVerdict::kReject;
+      if (tri_hi <= block_min) return HizVerdict::kAccept;
+      break;
+    case CompareOp::kGreater:
+      if (tri_hi <= block_min) return HizVerdict::kReject;
+      if (tri_lo > block_max) return HizVerdict::kAccept;
+      break;
+    case CompareOp::kGreaterEqual:
+      if (tri_hi < block_min) return HizVerdict::kReject;
+      if (tri_lo >= block_max) return HizVerdict::kAccept;
+      break;
+    default:
+      break;
+  }
+  return HizVerdict::kTest;
+}
+
+// Wide path: exact int64 coverage bits for each pixel of the block (see block_kernel.hpp).
+void wide_coverage(const TriangleSetup& t, const TileContext& tc, int32_t bx, int32_t by,
+                   uint32_t* coverage) {
+  const int shift = static_cast<int>(tc.subpixel_bits) - 4;
+  for (int p = 0; p < 64; ++p) {
+    const int64_t cx = ((int64_t{bx} * 8 + (p & 7)) * 16 + 8) << shift;
+    const int64_t cy = ((int64_t{by} * 8 + (p >> 3)) * 16 + 8) << shift;
+    uint32_t mask = 0;
+    for (uint32_t s = 0; s < tc.samples; ++s) {
+      const int64_t sx = cx + tc.sample_x[s], sy = cy + tc.sample_y[s];
+      bool inside = true;
+      for (int e = 0; e < 3; ++e)
+        inside &= t.a[e] * sx + t.b[e] * sy + t.c[e] >= 0;
+      mask |= inside ? 1u << s : 0u;
+    }
+    coverage[p] = mask;
+  }
+}
+
+// Hi-Z bounds of a block whose depth changed since they were last computed ("dirty": marked
+// by min > max). Writers only mark blocks; a Hi-Z test recomputes the bounds from the block's
+// samples when it needs them, so triangles that never test Hi-Z never pay for it.
+inline bool hiz_dirty(const TileContext& tc, size_t block) {
+  return !(tc.hiz_min[block] <= tc.hiz_max[block]);
+}
+inline void mark_hiz_dirty(const TileContext& tc, size_t block) {
+  tc.hiz_min[block] = std::numeric_limits<float>::infinity();
+  tc.hiz_max[block] = -std::numeric_limits<float>::infinity();
+}
+
+void refresh_hiz(const TileContext& tc, size_t block, uint32_t samples) {
+  const hn::ScalableTag<float> df;
+  const float* depth = tc.depth + block * 64;
+  auto lo = hn::Set(df, std::numeric_limits<float>::infinity());
+  auto hi = hn::Set(df, -std::numeric_limits<float>::infinity());
+  for (uint32_t s = 0; s < samples; ++s) {
+    for (size_t i = 0; i < 64; i += hn::Lanes(df)) {
+      const auto z = hn::Load(df, depth + s * kSamplePlane + i);
+      lo = hn::Min(lo, z);
+      hi = hn::Max(hi, z);
+    }
+  }
+  tc.hiz_min[block] = hn::GetLane(hn::MinOfLanes(df, lo));
+  tc.hiz_max[block] = hn::GetLane(hn::MaxOfLanes(df, hi));
+}
+
+// What one triangle's blocks share: per-pixel edge steps, the per-sample edge thresholds and
+// depth offsets, the pixels it may cover in this tile, and the counts it accumulates. Scalars
+// only: vectors travel as arguments (sizeless SIMD types cannot be members).
+struct TriangleState {
+  int32_t step_x[3], step_y[3];  // edge change per pixel in x and y
+  // A sample is inside edge e when E(pixel centre) + offset(sample) >= 0, i.e. when
+  // E(pixel centre) > -1 - offset: one compare per edge and sample, no add.
+  int32_t edge_threshold[16][3];
+  float z_offset[16];
+  uint32_t samples;
+  int32_t px0, px1, py0, py1;  // the bounding box inside the tile
+  int32_t tile_bx, tile_by;
+  uint32_t covered = 0, passed = 0, shaded = 0;
+};
+
+// Rasterizes the triangle over block (bx, by) of the tile: coverage of the edges in edge_mask
+// (e_block: their values at the centre of the block's first pixel), or the wide path's int64
+// coverage bits, then the early depth test, shading once per pixel and the writes. Plane bases
+// are computed at the first lane group with coverage, so blocks the triangle misses cost only
+// their edge tests.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
+HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
+                             VI lane_e0, VI lane_e1, VI lane_e2, int32_t bx, int32_t by,
+                             const int32_t* e_block, uint32_t edge_mask, bool wide,
+                             bool test_depth) {
+  const hn::ScalableTag<int32_t> di;
+  const hn::ScalableTag<uint32_t> du;
+  const hn::ScalableTag<float> df;
+  const size_t lanes = hn::Lanes(di);
+  const uint32_t samples = kMulti ? st.samples : 1;  // a constant 1 unrolls the sample loop
+
+  const size_t block =
+      static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
+  const int32_t cols = std::min<int32_t>(8, tc.x1 + 1 - bx * 8);
+  const int32_t rows = std::min<int32_t>(8, tc.y1 + 1 - by * 8);
+  const bool clipped_block = cols < 8 || rows < 8;
+  alignas(64) uint32_t coverage_bits[64];
+  if (wide) wide_coverage(t, tc, bx, by, coverage_bits);
+
+  bool have_bases = false;
+  float z_base = 0.0f, q_base = 0.0f, qa_base[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const auto compute_bases = [&] {
+    // The planes at the centre of the block's first pixel, relative to the plane origin.
+    const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;
+    z_base = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
+    if constexpr (kColor != ColorMode::kOff) {
+      const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
+      q_base = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
+      for (int c = 0; c < 4; ++c)
+        qa_base[c] = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
+    }
+    have_bases = true;
+  };
+  float* depth = tc.depth + block * 64;
+
+  // Lane groups covering the rows of the block the triangle's bounding box touches.
+  const int32_t row_begin = std::max(st.py0 - by * 8, 0);
+  const int32_t row_end = std::min(st.py1 - by * 8 + 1, rows);
+  const size_t first = static_cast<size_t>(row_begin) * 8 / lanes * lanes;
+  const size_t last =
+      std::min<size_t>(64, (static_cast<size_t>(row_end) * 8 + lanes - 1) / lanes * lanes);
+
+  bool wrote = false;
+  for (size_t i = first; i < last; i += lanes) {
+    auto inside = all_lanes(di);
+    if (clipped_block) {
+      inside = hn::And(hn::Lt(hn::Load(di, kPixels.x + i), hn::Set(di, cols)),
+                       hn::Lt(hn::Load(di, kPixels.y + i), hn::Set(di, rows)));
+    }
+    // Edge values at the lanes' pixel centres: the group's first pixel plus lane offsets.
+    const int32_t gx = static_cast<int32_t>(i & 7), gy = static_cast<int32_t>(i >> 3);
+    const auto e0 =
+        hn::Add(hn::Set(di, e_block[0] + st.step_x[0] * gx + st.step_y[0] * gy), lane_e0);
+    const auto e1 =
+        hn::Add(hn::Set(di, e_block[1] + st.step_x[1] * gx + st.step_y[1] * gy), lane_e1);
+    const auto e2 =
+        hn::Add(hn::Set(di, e_block[2] + st.step_x[2] * gx + st.step_y[2] * gy), lane_e2);
+    const auto cov_bits = wide ? hn::Load(du, coverage_bits + i) : hn::Zero(du);
+    const auto fx = hn::Load(df, kPixels.fx + i);
+    const auto fy = hn::Load(df, kPixels.fy + i);
+
+    // The depth plane's change from the block's first pixel, shared by every sample (the
+    // same sums plane_at forms, so the bits do not change).
+    const auto z_rel = hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
+    auto pass_bits = hn::Zero(du);  // bit s: sample s passed
+    for (uint32_t s = 0; s < samples; ++s) {
+      auto cov = inside;
+      if (wide) {
+        cov = hn::And(cov, hn::RebindMask(di, hn::TestBit(cov_bits, hn::Set(du, 1u << s))));
+      } else {
+        // Inside when E + offset >= 0, i.e. E > -1 - offset (integer lanes have no >=).
+        if (edge_mask & 1) cov = hn::And(cov, hn::Gt(e0, hn::Set(di, st.edge_threshold[s][0])));
+        if (edge_mask & 2) cov = hn::And(cov, hn::Gt(e1, hn::Set(di, st.edge_threshold[s][1])));
+        if (edge_mask & 4) cov = hn::And(cov, hn::Gt(e2, hn::Set(di, st.edge_threshold[s][2])));
+      }
+      if (hn::AllFalse(di, cov)) continue;
+      if (!have_bases) compute_bases();
+      if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
+      auto pass = hn::RebindMask(df, cov);
+      if constexpr (kDepth != DepthMode::kOff) {
+        auto z = kMulti ? hn::Add(hn::Set(df, z_base + st.z_offset[s]), z_rel)
+                        : plane_at(df, fx, fy, z_base, t.z_dx, t.z_dy);
+        z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
+        // Fixed-point formats: the step nearest z, ties to even (as encode_depth).
+        if (tc.depth_scale > 0.0f) z = hn::Round(hn::Mul(z, hn::Set(df, tc.depth_scale)));
+        float* plane = depth + s * kSamplePlane + i;
+        if (test_depth) {
+          const auto stored = hn::Load(df, plane);
+          pass = hn::And(pass, depth_passes(df, tc.compare, z, stored));
+        }
+        if constexpr (kDepth == DepthMode::kTestWrite) {
+          if (!hn::AllFalse(df, pass)) {
+            hn::BlendedStore(z, pass, df, plane);
+            wrote = true;
+          }
+        }
+      }
+      if constexpr (kCount) st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
+      pass_bits =
+          hn::Or(pass_bits, hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
+    }
+
+    if constexpr (kColor != ColorMode::kOff) {
+      const auto any = hn::Ne(pass_bits, hn::Zero(du));
+      if (hn::AllFalse(du, any)) continue;
+      if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
+      auto r = plane_at(df, fx, fy, qa_base[0], t.qa_dx[0], t.qa_dy[0]);
+      auto g = plane_at(df, fx, fy, qa_base[1], t.qa_dx[1], t.qa_dy[1]);
+      auto b = plane_at(df, fx, fy, qa_base[2], t.qa_dx[2], t.qa_dy[2]);
+      auto a = plane_at(df, fx, fy, qa_base[3], t.qa_dx[3], t.qa_dy[3]);
+      if (!t.flat_q) {
+        const auto q = plane_at(df, fx, fy, q_base, t.q_dx, t.q_dy);
+        const auto inv_q = hn::Div(hn::Set(df, 1.0f), q);
+        r = hn::Mul(r, inv_q);
+        g = hn::Mul(g, inv_q);
+        b = hn::Mul(b, inv_q);
+        a = hn::Mul(a, inv_q);
+        const auto beyond = hn::AndNot(hn::Gt(q, hn::Zero(df)), hn::RebindMask(df, any));
+        if (!hn::AllFalse(df, beyond)) {
+          // The pixel centre lies beyond the triangle's horizon (1/w <= 0 there): evaluate
+          // at the pixel's first passing sample instead, which is inside the triangle.
+          alignas(64) float channel[4][64];
+          alignas(64) uint32_t passing[64];
+          hn::Store(r, df, channel[0]);
+          hn::Store(g, df, channel[1]);
+          hn::Store(b, df, channel[2]);
+          hn::Store(a, df, channel[3]);
+          hn::Store(pass_bits, du, passing);
+          for (size_t l = 0; l < lanes; ++l) {
+            const float lx = kPixels.fx[i + l], ly = kPixels.fy[i + l];
+            if (passing[l] == 0 || q_base + (t.q_dx * lx + t.q_dy * ly) > 0.0f) continue;
+            uint32_t s = 0;
+            while (!(passing[l] & (1u << s)))
+              ++s;
+            const float sx = lx + tc.sample_fx[s], sy = ly + tc.sample_fy[s];
+            const float qs = q_base + (t.q_dx * sx + t.q_dy * sy);
+            for (int c = 0; c < 4; ++c) {
+              channel[c][l] = (qa_base[c] + (t.qa_dx[c] * sx + t.qa_dy[c] * sy)) / qs;
+            }
+          }
+          r = hn::Load(df, channel[0]);
+          g = hn::Load(df, channel[1]);
+          b = hn::Load(df, channel[2]);
+          a = hn::Load(df, channel[3]);
+        }
+      }
+      if constexpr (kColor == ColorMode::kRGBA8) {
+        const auto packed = hn::Or(
+            hn::Or(to_unorm8(df, r), hn::ShiftLeft<8>(to_unorm8(df, g))),
+            hn::Or(hn::ShiftLeft<16>(to_unorm8(df, b)), hn::ShiftLeft<24>(to_unorm8(df, a))));
+        uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + block * 64 + i;
+        if (samples == 1) {
+          hn::BlendedStore(packed, any, du, colour);
+        } else {
+          for (uint32_t s = 0; s < samples; ++s) {
+            hn::BlendedStore(packed, hn::TestBit(pass_bits, hn::Set(du, 1u << s)), du,
+                             colour + s * kSamplePlane);
+          }
+        }
+      } else {
+        for (uint32_t s = 0; s < samples; ++s) {
+          const auto m = hn::RebindMask(df, hn::TestBit(pass_bits, hn::Set(du, 1u << s)));
+          float* dst = tc.rgba32f + (block * 64 + s * kSamplePlane + i) * 4;
+          hn::Vec<decltype(df)> r0, g0, b0, a0;
+          hn::LoadInterleaved4(df, dst, r0, g0, b0, a0);
+          hn::StoreInterleaved4(hn::IfThenElse(m, r, r0), hn::IfThenElse(m, g, g0),
+                                hn::IfThenElse(m, b, b0), hn::IfThenElse(m, a, a0), df, dst);
+        }
+      }
+    }
+  }
+  if constexpr (kDepth == DepthMode::kTestWrite) {
+    // The block's depth changed: its Hi-Z bounds are recomputed when next needed.
+    if (wrote) mark_hiz_dirty(tc, block);
+  }
+}
+
+// One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
+// counters in; without it the kernel carries no counting code at all.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
+void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
+  const hn::ScalableTag<int32_t> di;
+  const uint32_t bits = tc.subpixel_bits;
+  const int shift = static_cast<int>(bits) - 4;
+  constexpr bool kTestDepth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
+
+  TriangleState st;
+  st.samples = kMulti ? tc.samples : 1;
+  st.px0 = std::max(t.x0, tc.x0);
+  st.px1 = std::min(t.x1, tc.x1);
+  st.py0 = std::max(t.y0, tc.y0);
+  st.py1 = std::min(t.y1, tc.y1);
+  st.tile_bx = tc.tile_x0 >> 3;
+  st.tile_by = tc.tile_y0 >> 3;
+  for (int e = 0; e < 3; ++e) {
+    // Only narrow triangles step edges in int32 (|a| << bits < 2^28); the wide path reads
+    // coverage bits computed in int64 instead.
+    st.step_x[e] = t.narrow ? t.a[e] * (1 << bits) : 0;
+    st.step_y[e] = t.narrow ? t.b[e] * (1 << bits) : 0;
+  }
+  for (uint32_t s = 0; s < st.samples; ++s) {
+    for (int e = 0; e < 3; ++e) {
+      const int32_t offset =
+          kMulti && t.narrow ? t.a[e] * tc.sample_x[s] + t.b[e] * tc.sample_y[s] : 0;
+      st.edge_threshold[s][e] = -1 - offset;
+    }
+    st.z_offset[s] = kMulti ? t.z_dx * tc.sample_fx[s] + t.z_dy * tc.sample_fy[s] : 0.0f;
+  }
+  const auto lane_x = hn::Load(di, kPixels.x);
+  const auto lane_y = hn::Load(di, kPixels.y);
+  const auto lane_e0 = hn::Add(hn::Mul(lane_x, hn::Set(di, st.step_x[0])),
+                               hn::Mul(lane_y, hn::Set(di, st.step_y[0])));
+  const auto lane_e1 = hn::Add(hn::Mul(lane_x, hn::Set(di, st.step_x[1])),
+                               hn::Mul(lane_y, hn::Set(di, st.step_y[1])));
+  const auto lane_e2 = hn::Add(hn::Mul(lane_x, hn::Set(di, st.step_x[2])),
+                               hn::Mul(lane_y, hn::Set(di, st.step_y[2])));
+  const int32_t bx0 = st.px0 >> 3, by0 = st.py0 >> 3, bx1 = st.px1 >> 3, by1 = st.py1 >> 3;
+
+  if (t.small) {
+    // Small triangles (every edge under 16 px across) skip the corner classification and
+    // Hi-Z: for the few blocks they touch, testing every edge costs less. Every sample of
+    // those blocks lies within 32 px of each vertex and |a|, |b| < 2^(bits+4), so
+    // |E| < 2^(2 bits + 10): all three edges step exactly in int32 from block to block. A
+    // block is skipped when an edge is negative at all its samples: its largest value over
+    // the block's pixel centres, plus half a pixel's change in x and y for the sample
+    // offsets (|offset| <= 1/2 px), is below zero.
+    const int64_t ox = (int64_t{bx0} * 128 + 8) << shift, oy = (int64_t{by0} * 128 + 8) << shift;
+    int32_t e_row[3], reach[3];
+    for (int e = 0; e < 3; ++e) {
+      e_row[e] = static_cast<int32_t>(t.a[e] * ox + t.b[e] * oy + t.c[e]);
+      reach[e] = std::max(st.step_x[e] * 7, 0) + std::max(st.step_y[e] * 7, 0) +
+                 ((std::abs(st.step_x[e]) + std::abs(st.step_y[e])) >> 1);
+    }
+    uint64_t rejected = 0, visited = 0;
+    for (int32_t by = by0; by <= by1; ++by) {
+      int32_t e_block[3] = {e_row[0], e_row[1], e_row[2]};
+      for (int e = 0; e < 3; ++e)
+        e_row[e] += st.step_y[e] * 8;
+      for (int32_t bx = bx0; bx <= bx1; ++bx) {
+        const bool outside =
+            (e_block[0] + reach[0] < 0) | (e_block[1] + reach[1] < 0) | (e_block[2] + reach[2] < 0);
+        ++visited;
+        if (outside) {
+          ++rejected;
+        } else {
+          raster_block<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by,
+                                                       e_block, 7, false, kTestDepth);
+        }
+        for (int e = 0; e < 3; ++e)
+          e_block[e] += st.step_x[e] * 8;
+      }
+    }
+    if constexpr (kCount) {
+      counters.blocks_rejected += rejected;
+      counters.blocks_partial += visited - rejected;
+    }
+  } else {
+    // Block classification, stepped from block to block. A block's sample area spans
+    // [x_lo, x_lo + span] in fixed point (pixel x holds samples from x + 0/16 to x + 15/16),
+    // so an edge's largest and smallest values over it are E(x_lo, y_lo) plus the positive or
+    // negative parts of a * span and b * span (Abrash 2009).
+    const int64_t span = int64_t{7 * 16 + 15} << shift;
+    const int64_t block_step = int64_t{8 * 16} << shift;
+    int64_t corner_row[3], max_offset[3], min_offset[3], step_bx[3], step_by[3];
+    for (int e = 0; e < 3; ++e) {
+      corner_row[e] = t.a[e] * (bx0 * block_step) + t.b[e] * (by0 * block_step) + t.c[e];
+      max_offset[e] = std::max<int64_t>(t.a[e] * span, 0) + std::max<int64_t>(t.b[e] * span, 0);
+      min_offset[e] = std::min<int64_t>(t.a[e] * span, 0) + std::min<int64_t>(t.b[e] * span, 0);
+      step_bx[e] = t.a[e] * block_step;
+      step_by[e] = t.b[e] * block_step;
+    }
+    const int64_t corner_to_centre = int64_t{8} << shift;  // sample area corner -> centre
+    // Depth over a block's sample area (pixel coordinates relative to the plane origin, the
+    // centre of pixel (x0, y0)), widened by a margin that covers the kernel's float rounding.
+    const double z_margin =
+        1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
+    const double z_lo_offset = std::min(0.0, 8.0 * t.z_dx) + std::min(0.0, 8.0 * t.z_dy) - z_margin;
+    const double z_hi_offset = std::max(0.0, 8.0 * t.z_dx) + std::max(0.0, 8.0 * t.z_dy) + z_margin;
+
+    for (int32_t by = by0; by <= by1; ++by) {
+      int64_t corner[3] = {corner_row[0], corner_row[1], corner_row[2]};
+      for (int e = 0; e < 3; ++e)
+        corner_row[e] += step_by[e];
+      for (int32_t bx = bx0; bx <= bx1; ++bx) {
+        uint32_t edge_mask = 0;
+        bool rejected = false;
+        int64_t block_corner[3];
+        for (int e = 0; e < 3; ++e) {
+          block_corner[e] = corner[e];
+          corner[e] += step_bx[e];
+          rejected |= block_corner[e] + max_offset[e] < 0;
+          edge_mask |= block_corner[e] + min_offset[e] < 0 ? 1u << e : 0u;
+        }
+        if (rejected) {
+          if constexpr (kCount) ++counters.blocks_rejected;
+          continue;
+        }
+        if constexpr (kCount) {
+          if (edge_mask == 0) {
+            ++counters.blocks_accepted;
+          } else {
+            ++counters.blocks_partial;
+          }
+        }
+
+        bool test_depth = kTestDepth;
+        if (tc.hiz) {
+          const size_t block =
+              static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
+          const bool clipped_block = bx * 8 + 7 > tc.x1 || by * 8 + 7 > tc.y1;
+          if (hiz_dirty(tc, block)) refresh_hiz(tc, block, st.samples);
+          // The depth plane at the corner of the block's sample area.
+          const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;
+          const double z_corner = t.z0 + t.z_dx * (dx - 0.5) + t.z_dy * (dy - 0.5);
+          double lo_z = std::max<double>(z_corner + z_lo_offset, t.z_min - z_margin);
+          double hi_z = std::min<double>(z_corner + z_hi_offset, t.z_max + z_margin);
+          if (tc.depth_scale > 0.0f) {
+            // In fixed-point steps: a stored step round(z * scale) lies in these bounds.
+            lo_z = std::floor(lo_z * tc.depth_scale);
+            hi_z = std::ceil(hi_z * tc.depth_scale);
+          }
+          const float lo = static_cast<float>(lo_z), hi = static_cast<float>(hi_z);
+          const HizVerdict verdict =
+              hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]);
+          if (verdict == HizVerdict::kReject) {
+            if constexpr (kCount) ++counters.hiz_rejected;
+            continue;
+          }
+          if (verdict == HizVerdict::kAccept && edge_mask == 0 && !clipped_block) {
+            if constexpr (kCount) ++counters.hiz_accepted;
+            test_depth = false;  // every sample passes: write without reading
+          }
+        }
+
+        const bool wide = edge_mask != 0 && !t.narrow;
+        int32_t e_block[3] = {0, 0, 0};  // at the centre of the block's first pixel
+        for (int e = 0; e < 3; ++e) {
+          // Only edges crossing the block are stepped; they fit 32 bits (block_kernel.hpp).
+          if (!wide && (edge_mask & (1u << e))) {
+            e_block[e] = static_cast<int32_t>(block_corner[e] +
+                                              (int64_t{t.a[e]} + t.b[e]) * corner_to_centre);
+          }
+        }
+        raster_block<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by,
+                                                     e_block, edge_mask, wide, test_depth);
+      }
+    }
+  }
+  if constexpr (kCount) {
+    counters.samples_covered += st.covered;
+    counters.samples_passed += st.passed;
+    counters.pixels_shaded += st.shaded;
+  }
+}
+
+template <DepthMode kDepth, ColorMode kColor, bool kMulti>
+void fill_count(KernelTable& t) {
+  t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][kMulti][0] =
+      &RasterTriangle<kDepth, kColor, kMulti, false>;
+  t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][kMulti][1] =
+      &RasterTriangle<kDepth, kColor, kMulti, true>;
+}
+
+template <DepthMode kDepth, ColorMode kColor>
+void fill_multi(KernelTable& t) {
+  fill_count<kDepth, kColor, false>(t);
+  fill_count<kDepth, kColor, true>(t);
+}
+
+}  // namespace
+
+// The twelve instances of depth mode kDepth (every colour mode, single or multisample,
+// counting or not) into table.kernels[kDepth]. Each block_kernel_depth_*.cpp instantiates it
+// for its mode; block_kernel.cpp calls the three.
+template <DepthMode kDepth>
+void FillDepthKernels(KernelTable& table) {
+  fill_multi<kDepth, ColorMode::kOff>(table);
+  fill_multi<kDepth, ColorMode::kRGBA8>(table);
+  fill_multi<kDepth, ColorMode::kRGBA32F>(table);
+}
+
+}  // namespace tessera::fast::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // TESSERA_ENGINE_SRC_FAST_BLOCK_KERNEL_INL_H_
