@@ -41,6 +41,10 @@ RendererOptions checked(const RendererOptions& o) {
     throw Error(ErrorCode::kInvalidArgument,
                 "bin tile size " + std::to_string(o.bin_tile_size) + " is not one of 32, 64, 128");
   }
+  if (o.block_size != 8 && o.block_size != 16 && o.block_size != 32) {
+    throw Error(ErrorCode::kInvalidArgument,
+                "block size " + std::to_string(o.block_size) + " is not one of 8, 16, 32");
+  }
   return o;
 }
 
