@@ -42,6 +42,7 @@ struct Settings {
   tessera::Interpolation interpolation = tessera::Interpolation::kPerspective;
   bool hiz = true;
   uint32_t bin_tile_size = 64;
+  uint32_t block_size = 8;
 };
 
 struct KnobValue {
@@ -91,6 +92,11 @@ std::vector<KnobValue> knob_values() {
     Settings s;
     s.bin_tile_size = size;
     out.push_back({"bin_tile_size", std::to_string(size), s});
+  }
+  for (uint32_t size : {8u, 16u, 32u}) {
+    Settings s;
+    s.block_size = size;
+    out.push_back({"block_size", std::to_string(size), s});
   }
   return out;
 }
@@ -168,6 +174,7 @@ double time_frames(const Settings& s, const Workload& w, uint32_t threads, int f
   options.threads = threads;
   options.hiz = s.hiz;
   options.bin_tile_size = s.bin_tile_size;
+  options.block_size = s.block_size;
   options.raster_counters = false;
   tessera::Renderer renderer(options);
   tessera::Framebuffer fb = framebuffer_for(s, w.width, w.height);
@@ -198,6 +205,7 @@ Image render_colour(const tessera::Scene& scene, const Settings& s, uint32_t wid
   options.threads = 0;
   options.hiz = s.hiz;
   options.bin_tile_size = s.bin_tile_size;
+  options.block_size = s.block_size;
   tessera::Renderer renderer(options);
   tessera::Framebuffer fb = framebuffer_for(s, width, height, tessera::ColorFormat::kRGBA32F);
   clear(fb, s);

@@ -35,6 +35,7 @@ struct Options {
   bool reversed_z = false;
   bool no_hiz = false;
   uint32_t bin_tile = 64;
+  uint32_t block_size = 8;
   std::string depth_format = "float32";
   std::vector<float> eye, target, up;
   float fov = 40.0f;
@@ -287,6 +288,7 @@ int run(const Options& o, const CLI::App& app) {
   renderer_options.raster_counters = !o.no_counters;
   renderer_options.hiz = !o.no_hiz;
   renderer_options.bin_tile_size = o.bin_tile;
+  renderer_options.block_size = o.block_size;
   if (o.bin_budget_mib > 0) {
     renderer_options.bin_memory_budget = static_cast<uint64_t>(o.bin_budget_mib * 1048576.0);
   }
@@ -418,6 +420,11 @@ int main(int argc, char** argv) {
   app.add_flag("--no-hiz", o.no_hiz, "fast engine: no Hi-Z block rejection and acceptance");
   app.add_option("--bin-tile", o.bin_tile, "fast engine: bin tile side in pixels")
       ->check(CLI::IsMember({32u, 64u, 128u}))
+      ->capture_default_str();
+  app.add_option("--block-size", o.block_size,
+                 "fast engine: side in pixels of the blocks the corner test classifies (16 and 32 "
+                 "reject or accept the 8x8 blocks inside at once)")
+      ->check(CLI::IsMember({8u, 16u, 32u}))
       ->capture_default_str();
   app.add_option("--depth-format", o.depth_format, "depth buffer format")
       ->check(CLI::IsMember({"float32", "unorm24", "unorm16"}))

@@ -20,7 +20,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 DEFAULTS = {"subpixel_bits": "8", "samples": "1", "depth_format": "float32",
-            "interpolation": "perspective", "hiz": "on", "bin_tile_size": "64"}
+            "interpolation": "perspective", "hiz": "on", "bin_tile_size": "64",
+            "block_size": "8"}
 
 
 def read(path):
@@ -69,6 +70,8 @@ def error_measures(sweep):
         "hiz": ("edge RMSE (8-bit units): the image does not change", edges["hiz"]),
         "bin_tile_size": ("edge RMSE (8-bit units): the image does not change",
                           edges["bin_tile_size"]),
+        "block_size": ("edge RMSE (8-bit units): the image does not change",
+                       edges["block_size"]),
     }
 
 

@@ -180,6 +180,23 @@ TEST(Cli, HelpPrintsTheUsageAndExitsZero) {
   EXPECT_EQ(r.err, "");
 }
 
+TEST(Cli, BlockSizeAndBinTileDrawTheSameImage) {
+  TempDir dir;
+  const std::string common = "--width 160 --height 96 --samples 4 --threads 2 -o ";
+  const RunResult standard = run_render(dir, common + quoted(dir / "standard.png"));
+  ASSERT_TRUE(standard.exited);
+  ASSERT_EQ(standard.exit_code, 0) << standard.err;
+  const std::string image = read_file(dir / "standard.png");
+  for (const std::string options :
+       {"--block-size 16", "--block-size 32", "--block-size 32 --bin-tile 128",
+        "--block-size 16 --bin-tile 32", "--block-size 8"}) {
+    const RunResult r = run_render(dir, options + " " + common + quoted(dir / "other.png"));
+    ASSERT_TRUE(r.exited);
+    EXPECT_EQ(r.exit_code, 0) << options << ": " << r.err;
+    EXPECT_EQ(read_file(dir / "other.png"), image) << options;
+  }
+}
+
 // --- Bad arguments and bad files ---------------------------------------------------------------
 
 struct BadRun {
@@ -245,6 +262,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadRun{"WireframeOfACapture", "{dir}/ok.tri --wireframe", "--wireframe"},
                       BadRun{"PointSizeZero", "--points --point-size 0", "--point-size"},
                       BadRun{"LineAlgorithmUnknown", "--line-algorithm wu", "--line-algorithm"},
+                      BadRun{"BlockSizeTwelve", "--block-size 12", "--block-size"},
                       BadRun{"UnwritableDepthPath",
                              "--width 8 --height 8 --depth {dir}/no/such/depth.exr", "depth.exr"}),
     [](const ::testing::TestParamInfo<BadRun>& p) { return std::string(p.param.name); });

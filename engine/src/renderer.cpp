@@ -44,6 +44,10 @@ RendererOptions checked(const RendererOptions& o) {
   if (o.non_finite != NonFiniteVertices::kError && o.non_finite != NonFiniteVertices::kCull) {
     throw Error(ErrorCode::kInvalidArgument, "renderer non_finite is not a NonFiniteVertices");
   }
+  if (o.block_size != 8 && o.block_size != 16 && o.block_size != 32) {
+    throw Error(ErrorCode::kInvalidArgument,
+                "block size " + std::to_string(o.block_size) + " is not one of 8, 16, 32");
+  }
   return o;
 }
 

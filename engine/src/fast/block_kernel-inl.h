@@ -5,14 +5,16 @@
 // it, so the three compile in parallel; block_kernel.cpp gathers them into the kernel table.
 //
 // For one triangle in one tile it walks the 8x8 blocks under the triangle's bounding box. Each
-// block is classified by the edge functions at its corners (Abrash 2009: an edge's extremes
-// over a rectangle lie at two corners): outside an edge (rejected), inside all three (accepted:
-// no edge tests), or partial; then Hi-Z may reject it or prove every sample passes. Lanes are
-// the block's pixels in row-major order, only the rows the triangle touches; each sample is a
-// pass over the lanes with its own edge and depth offsets. Edge functions step exactly in int32
+// block is classified by the edge functions at its corners (Abrash 2009: an edge's extremes over
+// a rectangle lie at two corners): outside an edge (rejected), inside all three (accepted: no
+// edge tests), or partial; then Hi-Z may reject it or prove every sample passes. With a block
+// size of 16 or 32 (RendererOptions::block_size) the same test first classifies 2x2 or 4x4
+// blocks at once, testing the blocks one by one only where an edge crosses. Lanes are the
+// block's pixels in row-major order, only the rows the triangle touches; each sample is a pass
+// over the lanes with its own edge and depth offsets. Edge functions step exactly in int32
 // (bound in block_kernel.hpp). Planes are evaluated as base + (gx * x + gy * y) from the block
-// corner in the same order on every target, and contraction is off, so every target writes
-// the same bytes.
+// corner in the same order on every target, and contraction is off, so every target writes the
+// same bytes.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -374,16 +376,174 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
   }
 }
 
-// One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
-// counters in; without it the kernel carries no counting code at all.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
-void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
-  const hn::ScalableTag<int32_t> di;
-  const uint32_t bits = tc.subpixel_bits;
-  const int shift = static_cast<int>(bits) - 4;
-  constexpr bool kTestDepth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
+// raster_block out of line, for the general path: one copy of the block code for all its block
+// loops (small triangles inline theirs); next to a block's 64 pixels the call costs little.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
+HWY_NOINLINE void raster_block_outlined(const TileContext& tc, const TriangleSetup& t,
+                                        TriangleState& st, VI lane_e0, VI lane_e1, VI lane_e2,
+                                        int32_t bx, int32_t by, const int32_t* e_block,
+                                        uint32_t edge_mask, bool wide, bool test_depth) {
+  raster_block<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by,
+                                               e_block, edge_mask, wide, test_depth);
+}
 
-  TriangleState st;
+// What the general path's block tests share for one triangle.
+struct BlockTests {
+  // An edge's largest and smallest change over a block's sample area from its corner, and its
+  // change from one block to the next in x and y.
+  int64_t max_offset[3], min_offset[3], step_bx[3], step_by[3];
+  int64_t corner_to_centre;  // from the corner of a pixel's sample area to its centre
+  // The depth plane's range over a block's sample area from its corner, and the margin that
+  // covers the kernel's float rounding.
+  double z_lo_offset, z_hi_offset, z_margin;
+};
+
+// A block that passed the corner test, with the edges crossing it in edge_mask (block_corner:
+// the edges' values at the corner of its sample area): counted, then Hi-Z, then rasterized.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
+HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
+                            const BlockTests& bt, Counters& counters, VI lane_e0, VI lane_e1,
+                            VI lane_e2, int32_t bx, int32_t by, const int64_t* block_corner,
+                            uint32_t edge_mask) {
+  if constexpr (kCount) {
+    if (edge_mask == 0) {
+      ++counters.blocks_accepted;
+    } else {
+      ++counters.blocks_partial;
+    }
+  }
+
+  bool test_depth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
+  if (tc.hiz) {
+    const size_t block =
+        static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
+    const bool clipped_block = bx * 8 + 7 > tc.x1 || by * 8 + 7 > tc.y1;
+    if (hiz_dirty(tc, block)) refresh_hiz(tc, block, st.samples);
+    // The depth plane at the corner of the block's sample area.
+    const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;
+    const double z_corner = t.z0 + t.z_dx * (dx - 0.5) + t.z_dy * (dy - 0.5);
+    double lo_z = std::max<double>(z_corner + bt.z_lo_offset, t.z_min - bt.z_margin);
+    double hi_z = std::min<double>(z_corner + bt.z_hi_offset, t.z_max + bt.z_margin);
+    if (tc.depth_scale > 0.0f) {
+      // In fixed-point steps: a stored step round(z * scale) lies in these bounds.
+      lo_z = std::floor(lo_z * tc.depth_scale);
+      hi_z = std::ceil(hi_z * tc.depth_scale);
+    }
+    const float lo = static_cast<float>(lo_z), hi = static_cast<float>(hi_z);
+    const HizVerdict verdict = hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]);
+    if (verdict == HizVerdict::kReject) {
+      if constexpr (kCount) ++counters.hiz_rejected;
+      return;
+    }
+    if (verdict == HizVerdict::kAccept && edge_mask == 0 && !clipped_block) {
+      if constexpr (kCount) ++counters.hiz_accepted;
+      test_depth = false;  // every sample passes: write without reading
+    }
+  }
+
+  const bool wide = edge_mask != 0 && !t.narrow;
+  int32_t e_block[3] = {0, 0, 0};  // at the centre of the block's first pixel
+  for (int e = 0; e < 3; ++e) {
+    // Only edges crossing the block are stepped; they fit 32 bits (block_kernel.hpp).
+    if (!wide && (edge_mask & (1u << e))) {
+      e_block[e] =
+          static_cast<int32_t>(block_corner[e] + (int64_t{t.a[e]} + t.b[e]) * bt.corner_to_centre);
+    }
+  }
+  raster_block_outlined<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx,
+                                                        by, e_block, edge_mask, wide, test_depth);
+}
+
+// The blocks from (bx_begin, by_begin) to (bx_end, by_end) (inclusive). With `classify`, each
+// takes the corner test, stepped from block to block from `corner` (the edges' values at the
+// first block's corner): blocks outside an edge are rejected, the others visited. Without, all
+// are inside every edge (a coarse block's verdict) and visited untested.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
+HWY_INLINE void visit_blocks(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
+                             const BlockTests& bt, Counters& counters, VI lane_e0, VI lane_e1,
+                             VI lane_e2, int32_t bx_begin, int32_t by_begin, int32_t bx_end,
+                             int32_t by_end, const int64_t* corner, bool classify) {
+  int64_t corner_row[3] = {corner[0], corner[1], corner[2]};
+  for (int32_t by = by_begin; by <= by_end; ++by) {
+    int64_t block_corner[3] = {corner_row[0], corner_row[1], corner_row[2]};
+    for (int e = 0; e < 3; ++e)
+      corner_row[e] += bt.step_by[e];
+    for (int32_t bx = bx_begin; bx <= bx_end; ++bx) {
+      uint32_t edge_mask = 0;
+      bool rejected = false;
+      if (classify) {
+        for (int e = 0; e < 3; ++e) {
+          rejected |= block_corner[e] + bt.max_offset[e] < 0;
+          edge_mask |= block_corner[e] + bt.min_offset[e] < 0 ? 1u << e : 0u;
+        }
+      }
+      if (rejected) {
+        if constexpr (kCount) ++counters.blocks_rejected;
+      } else {
+        visit_block<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1,
+                                                    lane_e2, bx, by, block_corner, edge_mask);
+      }
+      for (int e = 0; e < 3; ++e)
+        block_corner[e] += bt.step_bx[e];
+    }
+  }
+}
+
+// The general path at block size 16 or 32: coarse blocks of n x n blocks (n = 2 or 4), counted
+// from the triangle's first block in this tile and cut at its last, take the same corner test
+// first, over their own sample area, which holds their blocks' sample areas: outside an edge
+// there, every block inside is outside it (all rejected, none visited); inside all three, every
+// block inside is too (all accepted, no test each). Only the blocks of a partial coarse block
+// are tested one by one. So every block is rejected, accepted or partial, counted and drawn
+// exactly as at block size 8, only in another order, which changes nothing: a triangle's
+// blocks are disjoint. Out of line, with one copy of the block loop, which block size 8 does
+// not run.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
+HWY_NOINLINE void raster_coarse(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
+                                const BlockTests& bt, Counters& counters, VI lane_e0, VI lane_e1,
+                                VI lane_e2, int32_t bx0, int32_t by0, int32_t bx1, int32_t by1,
+                                const int64_t* corner) {
+  const int shift = static_cast<int>(tc.subpixel_bits) - 4;
+  const int32_t n = static_cast<int32_t>(tc.coarse_blocks);
+  int64_t coarse_row[3] = {corner[0], corner[1], corner[2]};
+  for (int32_t cy = by0; cy <= by1; cy += n) {
+    const int32_t cy1 = std::min(cy + n - 1, by1);
+    int64_t coarse[3] = {coarse_row[0], coarse_row[1], coarse_row[2]};
+    for (int e = 0; e < 3; ++e)
+      coarse_row[e] += bt.step_by[e] * n;
+    for (int32_t cx = bx0; cx <= bx1; cx += n) {
+      const int32_t cx1 = std::min(cx + n - 1, bx1);
+      int64_t coarse_corner[3] = {coarse[0], coarse[1], coarse[2]};
+      for (int e = 0; e < 3; ++e)
+        coarse[e] += bt.step_bx[e] * n;
+      // The coarse block's sample area: cx1 - cx + 1 blocks across, cy1 - cy + 1 down.
+      const int64_t span_x = (int64_t{cx1 - cx + 1} * 128 - 1) << shift;
+      const int64_t span_y = (int64_t{cy1 - cy + 1} * 128 - 1) << shift;
+      bool outside = false, inside = true;
+      for (int e = 0; e < 3; ++e) {
+        const int64_t a_span = t.a[e] * span_x, b_span = t.b[e] * span_y;
+        const int64_t c = coarse_corner[e];
+        outside |= c + std::max<int64_t>(a_span, 0) + std::max<int64_t>(b_span, 0) < 0;
+        inside &= c + std::min<int64_t>(a_span, 0) + std::min<int64_t>(b_span, 0) >= 0;
+      }
+      if (outside) {
+        if constexpr (kCount) {
+          counters.blocks_rejected += static_cast<uint64_t>((cx1 - cx + 1) * (cy1 - cy + 1));
+        }
+        continue;
+      }
+      // Partial: its blocks take their own tests; inside every edge: none.
+      visit_blocks<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1,
+                                                   lane_e2, cx, cy, cx1, cy1, coarse_corner,
+                                                   !inside);
+    }
+  }
+}
+
+// The triangle's state in this tile, as both paths set it up.
+template <bool kMulti>
+HWY_INLINE void set_up_state(const TileContext& tc, const TriangleSetup& t, TriangleState& st) {
+  const uint32_t bits = tc.subpixel_bits;
   st.samples = kMulti ? tc.samples : 1;
   st.px0 = std::max(t.x0, tc.x0);
   st.px1 = std::min(t.x1, tc.x1);
@@ -405,147 +565,121 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
     }
     st.z_offset[s] = kMulti ? t.z_dx * tc.sample_fx[s] + t.z_dy * tc.sample_fy[s] : 0.0f;
   }
-  const auto lane_x = hn::Load(di, kPixels.x);
-  const auto lane_y = hn::Load(di, kPixels.y);
-  const auto lane_e0 = hn::Add(hn::Mul(lane_x, hn::Set(di, st.step_x[0])),
-                               hn::Mul(lane_y, hn::Set(di, st.step_y[0])));
-  const auto lane_e1 = hn::Add(hn::Mul(lane_x, hn::Set(di, st.step_x[1])),
-                               hn::Mul(lane_y, hn::Set(di, st.step_y[1])));
-  const auto lane_e2 = hn::Add(hn::Mul(lane_x, hn::Set(di, st.step_x[2])),
-                               hn::Mul(lane_y, hn::Set(di, st.step_y[2])));
+}
+
+// An edge's change from a block's first pixel to each lane's pixel.
+template <class DI>
+HWY_INLINE hn::Vec<DI> lane_steps(DI di, int32_t step_x, int32_t step_y) {
+  return hn::Add(hn::Mul(hn::Load(di, kPixels.x), hn::Set(di, step_x)),
+                 hn::Mul(hn::Load(di, kPixels.y), hn::Set(di, step_y)));
+}
+
+// RasterTriangle's general path, for triangles that are not small: out of line, with a state of
+// its own. In one function with the small-triangle path, sharing its state (whose address the
+// general path passes to raster_block_outlined), it made that path, which most triangles of a
+// dense mesh take, 3-4% slower.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
+HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
+                                 Counters& counters) {
+  const hn::ScalableTag<int32_t> di;
+  const int shift = static_cast<int>(tc.subpixel_bits) - 4;
+  TriangleState st;
+  set_up_state<kMulti>(tc, t, st);
+  const auto lane_e0 = lane_steps(di, st.step_x[0], st.step_y[0]);
+  const auto lane_e1 = lane_steps(di, st.step_x[1], st.step_y[1]);
+  const auto lane_e2 = lane_steps(di, st.step_x[2], st.step_y[2]);
   const int32_t bx0 = st.px0 >> 3, by0 = st.py0 >> 3, bx1 = st.px1 >> 3, by1 = st.py1 >> 3;
 
-  if (t.small) {
-    // Small triangles (every edge under 16 px across) skip the corner classification and
-    // Hi-Z: for the few blocks they touch, testing every edge costs less. Every sample of
-    // those blocks lies within 32 px of each vertex and |a|, |b| < 2^(bits+4), so
-    // |E| < 2^(2 bits + 10): all three edges step exactly in int32 from block to block. A
-    // block is skipped when an edge is negative at all its samples: its largest value over
-    // the block's pixel centres, plus half a pixel's change in x and y for the sample
-    // offsets (|offset| <= 1/2 px), is below zero.
-    const int64_t ox = (int64_t{bx0} * 128 + 8) << shift, oy = (int64_t{by0} * 128 + 8) << shift;
-    int32_t e_row[3], reach[3];
-    for (int e = 0; e < 3; ++e) {
-      e_row[e] = static_cast<int32_t>(t.a[e] * ox + t.b[e] * oy + t.c[e]);
-      reach[e] = std::max(st.step_x[e] * 7, 0) + std::max(st.step_y[e] * 7, 0) +
-                 ((std::abs(st.step_x[e]) + std::abs(st.step_y[e])) >> 1);
-    }
-    uint64_t rejected = 0, visited = 0;
-    for (int32_t by = by0; by <= by1; ++by) {
-      int32_t e_block[3] = {e_row[0], e_row[1], e_row[2]};
-      for (int e = 0; e < 3; ++e)
-        e_row[e] += st.step_y[e] * 8;
-      for (int32_t bx = bx0; bx <= bx1; ++bx) {
-        const bool outside =
-            (e_block[0] + reach[0] < 0) | (e_block[1] + reach[1] < 0) | (e_block[2] + reach[2] < 0);
-        ++visited;
-        if (outside) {
-          ++rejected;
-        } else {
-          raster_block<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by,
-                                                       e_block, 7, false, kTestDepth);
-        }
-        for (int e = 0; e < 3; ++e)
-          e_block[e] += st.step_x[e] * 8;
-      }
-    }
-    if constexpr (kCount) {
-      counters.blocks_rejected += rejected;
-      counters.blocks_partial += visited - rejected;
-    }
+  // Block classification, stepped from block to block. A block's sample area spans
+  // [x_lo, x_lo + span] in fixed point (pixel x holds samples from x + 0/16 to x + 15/16),
+  // so an edge's largest and smallest values over it are E(x_lo, y_lo) plus the positive or
+  // negative parts of a * span and b * span (Abrash 2009).
+  const int64_t span = int64_t{7 * 16 + 15} << shift;
+  const int64_t block_step = int64_t{8 * 16} << shift;
+  BlockTests bt;
+  int64_t corner[3];  // at the first block
+  for (int e = 0; e < 3; ++e) {
+    corner[e] = t.a[e] * (bx0 * block_step) + t.b[e] * (by0 * block_step) + t.c[e];
+    bt.max_offset[e] = std::max<int64_t>(t.a[e] * span, 0) + std::max<int64_t>(t.b[e] * span, 0);
+    bt.min_offset[e] = std::min<int64_t>(t.a[e] * span, 0) + std::min<int64_t>(t.b[e] * span, 0);
+    bt.step_bx[e] = t.a[e] * block_step;
+    bt.step_by[e] = t.b[e] * block_step;
+  }
+  bt.corner_to_centre = int64_t{8} << shift;
+  // Depth over a block's sample area (pixel coordinates relative to the plane origin, the
+  // centre of pixel (x0, y0)), widened by a margin that covers the kernel's float rounding.
+  bt.z_margin = 1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
+  bt.z_lo_offset = std::min(0.0, 8.0 * t.z_dx) + std::min(0.0, 8.0 * t.z_dy) - bt.z_margin;
+  bt.z_hi_offset = std::max(0.0, 8.0 * t.z_dx) + std::max(0.0, 8.0 * t.z_dy) + bt.z_margin;
+
+  if (tc.coarse_blocks == 1) {
+    visit_blocks<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1, lane_e2,
+                                                 bx0, by0, bx1, by1, corner, true);
   } else {
-    // Block classification, stepped from block to block. A block's sample area spans
-    // [x_lo, x_lo + span] in fixed point (pixel x holds samples from x + 0/16 to x + 15/16),
-    // so an edge's largest and smallest values over it are E(x_lo, y_lo) plus the positive or
-    // negative parts of a * span and b * span (Abrash 2009).
-    const int64_t span = int64_t{7 * 16 + 15} << shift;
-    const int64_t block_step = int64_t{8 * 16} << shift;
-    int64_t corner_row[3], max_offset[3], min_offset[3], step_bx[3], step_by[3];
-    for (int e = 0; e < 3; ++e) {
-      corner_row[e] = t.a[e] * (bx0 * block_step) + t.b[e] * (by0 * block_step) + t.c[e];
-      max_offset[e] = std::max<int64_t>(t.a[e] * span, 0) + std::max<int64_t>(t.b[e] * span, 0);
-      min_offset[e] = std::min<int64_t>(t.a[e] * span, 0) + std::min<int64_t>(t.b[e] * span, 0);
-      step_bx[e] = t.a[e] * block_step;
-      step_by[e] = t.b[e] * block_step;
-    }
-    const int64_t corner_to_centre = int64_t{8} << shift;  // sample area corner -> centre
-    // Depth over a block's sample area (pixel coordinates relative to the plane origin, the
-    // centre of pixel (x0, y0)), widened by a margin that covers the kernel's float rounding.
-    const double z_margin =
-        1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
-    const double z_lo_offset = std::min(0.0, 8.0 * t.z_dx) + std::min(0.0, 8.0 * t.z_dy) - z_margin;
-    const double z_hi_offset = std::max(0.0, 8.0 * t.z_dx) + std::max(0.0, 8.0 * t.z_dy) + z_margin;
+    raster_coarse<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1,
+                                                  lane_e2, bx0, by0, bx1, by1, corner);
+  }
+  if constexpr (kCount) {
+    counters.samples_covered += st.covered;
+    counters.samples_passed += st.passed;
+    counters.pixels_shaded += st.shaded;
+  }
+}
 
-    for (int32_t by = by0; by <= by1; ++by) {
-      int64_t corner[3] = {corner_row[0], corner_row[1], corner_row[2]};
-      for (int e = 0; e < 3; ++e)
-        corner_row[e] += step_by[e];
-      for (int32_t bx = bx0; bx <= bx1; ++bx) {
-        uint32_t edge_mask = 0;
-        bool rejected = false;
-        int64_t block_corner[3];
-        for (int e = 0; e < 3; ++e) {
-          block_corner[e] = corner[e];
-          corner[e] += step_bx[e];
-          rejected |= block_corner[e] + max_offset[e] < 0;
-          edge_mask |= block_corner[e] + min_offset[e] < 0 ? 1u << e : 0u;
-        }
-        if (rejected) {
-          if constexpr (kCount) ++counters.blocks_rejected;
-          continue;
-        }
-        if constexpr (kCount) {
-          if (edge_mask == 0) {
-            ++counters.blocks_accepted;
-          } else {
-            ++counters.blocks_partial;
-          }
-        }
+// One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
+// counters in; without it the kernel carries no counting code at all.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
+void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
+  if (!t.small) {
+    raster_general<kDepth, kColor, kMulti, kCount>(tc, t, counters);
+    return;
+  }
+  const hn::ScalableTag<int32_t> di;
+  const int shift = static_cast<int>(tc.subpixel_bits) - 4;
+  constexpr bool kTestDepth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
+  TriangleState st;
+  set_up_state<kMulti>(tc, t, st);
+  const auto lane_e0 = lane_steps(di, st.step_x[0], st.step_y[0]);
+  const auto lane_e1 = lane_steps(di, st.step_x[1], st.step_y[1]);
+  const auto lane_e2 = lane_steps(di, st.step_x[2], st.step_y[2]);
+  const int32_t bx0 = st.px0 >> 3, by0 = st.py0 >> 3, bx1 = st.px1 >> 3, by1 = st.py1 >> 3;
 
-        bool test_depth = kTestDepth;
-        if (tc.hiz) {
-          const size_t block =
-              static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
-          const bool clipped_block = bx * 8 + 7 > tc.x1 || by * 8 + 7 > tc.y1;
-          if (hiz_dirty(tc, block)) refresh_hiz(tc, block, st.samples);
-          // The depth plane at the corner of the block's sample area.
-          const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;
-          const double z_corner = t.z0 + t.z_dx * (dx - 0.5) + t.z_dy * (dy - 0.5);
-          double lo_z = std::max<double>(z_corner + z_lo_offset, t.z_min - z_margin);
-          double hi_z = std::min<double>(z_corner + z_hi_offset, t.z_max + z_margin);
-          if (tc.depth_scale > 0.0f) {
-            // In fixed-point steps: a stored step round(z * scale) lies in these bounds.
-            lo_z = std::floor(lo_z * tc.depth_scale);
-            hi_z = std::ceil(hi_z * tc.depth_scale);
-          }
-          const float lo = static_cast<float>(lo_z), hi = static_cast<float>(hi_z);
-          const HizVerdict verdict =
-              hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]);
-          if (verdict == HizVerdict::kReject) {
-            if constexpr (kCount) ++counters.hiz_rejected;
-            continue;
-          }
-          if (verdict == HizVerdict::kAccept && edge_mask == 0 && !clipped_block) {
-            if constexpr (kCount) ++counters.hiz_accepted;
-            test_depth = false;  // every sample passes: write without reading
-          }
-        }
-
-        const bool wide = edge_mask != 0 && !t.narrow;
-        int32_t e_block[3] = {0, 0, 0};  // at the centre of the block's first pixel
-        for (int e = 0; e < 3; ++e) {
-          // Only edges crossing the block are stepped; they fit 32 bits (block_kernel.hpp).
-          if (!wide && (edge_mask & (1u << e))) {
-            e_block[e] = static_cast<int32_t>(block_corner[e] +
-                                              (int64_t{t.a[e]} + t.b[e]) * corner_to_centre);
-          }
-        }
+  // Small triangles (every edge under 16 px across) skip the corner classification and
+  // Hi-Z: for the few blocks they touch, testing every edge costs less. Every sample of
+  // those blocks lies within 32 px of each vertex and |a|, |b| < 2^(bits+4), so
+  // |E| < 2^(2 bits + 10): all three edges step exactly in int32 from block to block. A
+  // block is skipped when an edge is negative at all its samples: its largest value over
+  // the block's pixel centres, plus half a pixel's change in x and y for the sample
+  // offsets (|offset| <= 1/2 px), is below zero.
+  const int64_t ox = (int64_t{bx0} * 128 + 8) << shift, oy = (int64_t{by0} * 128 + 8) << shift;
+  int32_t e_row[3], reach[3];
+  for (int e = 0; e < 3; ++e) {
+    e_row[e] = static_cast<int32_t>(t.a[e] * ox + t.b[e] * oy + t.c[e]);
+    reach[e] = std::max(st.step_x[e] * 7, 0) + std::max(st.step_y[e] * 7, 0) +
+               ((std::abs(st.step_x[e]) + std::abs(st.step_y[e])) >> 1);
+  }
+  uint64_t rejected = 0, visited = 0;
+  for (int32_t by = by0; by <= by1; ++by) {
+    int32_t e_block[3] = {e_row[0], e_row[1], e_row[2]};
+    for (int e = 0; e < 3; ++e)
+      e_row[e] += st.step_y[e] * 8;
+    for (int32_t bx = bx0; bx <= bx1; ++bx) {
+      const bool outside =
+          (e_block[0] + reach[0] < 0) | (e_block[1] + reach[1] < 0) | (e_block[2] + reach[2] < 0);
+      ++visited;
+      if (outside) {
+        ++rejected;
+      } else {
         raster_block<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by,
-                                                     e_block, edge_mask, wide, test_depth);
+                                                     e_block, 7, false, kTestDepth);
       }
+      for (int e = 0; e < 3; ++e)
+        e_block[e] += st.step_x[e] * 8;
     }
   }
   if constexpr (kCount) {
+    counters.blocks_rejected += rejected;
+    counters.blocks_partial += visited - rejected;
     counters.samples_covered += st.covered;
     counters.samples_passed += st.passed;
     counters.pixels_shaded += st.shaded;

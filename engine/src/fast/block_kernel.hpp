@@ -41,6 +41,9 @@ struct TileContext {
   uint32_t subpixel_bits = 8;
   CompareOp compare = CompareOp::kLess;
   bool hiz = false;  // Hi-Z reject/accept (the compare op is one of <, <=, >, >=)
+  // 8x8 blocks per side of the coarse blocks the corner test classifies before their blocks
+  // (RendererOptions::block_size / 8): 1, 2 or 4.
+  uint32_t coarse_blocks = 1;
   // Fixed-point depth formats store round(z * depth_scale); 0 for float depth.
   float depth_scale = 0.0f;
   // Sample offsets from the pixel centre, in fixed point and in pixels.

@@ -53,6 +53,7 @@ struct FastRasterizer::State {
   bool count = true;  // raster counters
   bool hiz = true;
   uint32_t bin_tile_log2 = binning::kTileSizeLog2;
+  uint32_t coarse_blocks = 1;  // 8x8 blocks per side of the blocks the corner test classifies
   const KernelTable* kernels = nullptr;
   SetupRangeFn setup = nullptr;
   std::vector<Chunk> chunks;
@@ -69,6 +70,7 @@ FastRasterizer::FastRasterizer(int64_t simd_target, const RendererOptions& optio
   state_->count = options.raster_counters;
   state_->hiz = options.hiz;
   state_->bin_tile_log2 = static_cast<uint32_t>(std::countr_zero(options.bin_tile_size));
+  state_->coarse_blocks = options.block_size / detail::kBlockSize;
   state_->kernels = &kernel_table(simd_target);
   state_->setup = setup_kernel(simd_target);
 }
@@ -96,6 +98,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   draw.samples = samples;
   draw.subpixel_bits = bits;
   draw.compare = pipeline.depth_compare;
+  draw.coarse_blocks = st.coarse_blocks;
   draw.depth_scale = static_cast<float>(detail::depth_scale(fb.desc.depth_format));
   const auto pattern = sample_pattern(samples);
   for (uint32_t s = 0; s < samples; ++s) {
