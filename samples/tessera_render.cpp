@@ -36,6 +36,7 @@ struct Options {
   bool no_hiz = false;
   uint32_t bin_tile = 64;
   uint32_t block_size = 8;
+  bool sub_blocks = false;
   std::string depth_format = "float32";
   std::vector<float> eye, target, up;
   float fov = 40.0f;
@@ -289,6 +290,7 @@ int run(const Options& o, const CLI::App& app) {
   renderer_options.hiz = !o.no_hiz;
   renderer_options.bin_tile_size = o.bin_tile;
   renderer_options.block_size = o.block_size;
+  renderer_options.sub_block_tests = o.sub_blocks;
   if (o.bin_budget_mib > 0) {
     renderer_options.bin_memory_budget = static_cast<uint64_t>(o.bin_budget_mib * 1048576.0);
   }
@@ -348,13 +350,15 @@ int run(const Options& o, const CLI::App& app) {
     const auto per = [frames](uint64_t v) { return static_cast<unsigned long long>(v / frames); };
     std::printf(
         "per frame: submitted %llu, culled %llu, clipped %llu, rasterized %llu, bin references "
-        "%llu, bin passes %llu, blocks rejected %llu, accepted %llu, partial %llu, Hi-Z "
-        "rejected %llu, Hi-Z accepted %llu, samples covered %llu, passed %llu, pixels shaded "
-        "%llu\n",
+        "%llu, bin passes %llu, blocks rejected %llu, accepted %llu, partial %llu, sub-blocks "
+        "rejected %llu, accepted %llu, partial %llu, Hi-Z rejected %llu, Hi-Z accepted %llu, "
+        "samples covered %llu, passed %llu, pixels shaded %llu\n",
         per(c.triangles_submitted), per(c.triangles_culled), per(c.triangles_clipped),
         per(c.triangles_rasterized), per(c.bin_references), per(c.bin_passes),
-        per(c.blocks_rejected), per(c.blocks_accepted), per(c.blocks_partial), per(c.hiz_rejected),
-        per(c.hiz_accepted), per(c.samples_covered), per(c.samples_passed), per(c.pixels_shaded));
+        per(c.blocks_rejected), per(c.blocks_accepted), per(c.blocks_partial),
+        per(c.subblocks_rejected), per(c.subblocks_accepted), per(c.subblocks_partial),
+        per(c.hiz_rejected), per(c.hiz_accepted), per(c.samples_covered), per(c.samples_passed),
+        per(c.pixels_shaded));
     std::printf("per frame: points %llu, line segments %llu, polygons %llu\n",
                 per(c.points_submitted), per(c.lines_submitted), per(c.polygons_submitted));
   }
@@ -426,6 +430,8 @@ int main(int argc, char** argv) {
                  "reject or accept the 8x8 blocks inside at once)")
       ->check(CLI::IsMember({8u, 16u, 32u}))
       ->capture_default_str();
+  app.add_flag("--sub-blocks", o.sub_blocks,
+               "fast engine: classify each SIMD lane group of a partial block before its pixels");
   app.add_option("--depth-format", o.depth_format, "depth buffer format")
       ->check(CLI::IsMember({"float32", "unorm24", "unorm16"}))
       ->capture_default_str();

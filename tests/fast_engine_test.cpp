@@ -80,8 +80,10 @@ struct Result {
 
 Result render(const Scene& scene, Backend backend, const Config& config = {SimdTarget::kAuto, 1},
               uint64_t budget = kDefaultBinMemoryBudget, bool raster_counters = true,
-              bool hiz = true, uint32_t bin_tile_size = 64, uint32_t block_size = 8) {
+              bool hiz = true, uint32_t bin_tile_size = 64, uint32_t block_size = 8,
+              bool sub_blocks = false) {
   RendererOptions options;
+  options.sub_block_tests = sub_blocks;
   options.bin_tile_size = bin_tile_size;
   options.block_size = block_size;
   options.raster_counters = raster_counters;
@@ -477,6 +479,9 @@ void expect_same_block_counts(const Counters& c, const Counters& standard, uint3
   EXPECT_EQ(c.blocks_rejected, standard.blocks_rejected) << "blocks of " << size;
   EXPECT_EQ(c.blocks_accepted, standard.blocks_accepted) << "blocks of " << size;
   EXPECT_EQ(c.blocks_partial, standard.blocks_partial) << "blocks of " << size;
+  EXPECT_EQ(c.subblocks_rejected, standard.subblocks_rejected) << "blocks of " << size;
+  EXPECT_EQ(c.subblocks_accepted, standard.subblocks_accepted) << "blocks of " << size;
+  EXPECT_EQ(c.subblocks_partial, standard.subblocks_partial) << "blocks of " << size;
   EXPECT_EQ(c.hiz_rejected, standard.hiz_rejected) << "blocks of " << size;
   EXPECT_EQ(c.hiz_accepted, standard.hiz_accepted) << "blocks of " << size;
   EXPECT_EQ(c.samples_covered, standard.samples_covered) << "blocks of " << size;
@@ -610,11 +615,52 @@ TEST(FastEngine, RasterCountersOffDrawTheSameImageAndCountNoRasterWork) {
     EXPECT_EQ(0, std::memcmp(quiet.depth.data(), counted.depth.data(), counted.depth.size() * 4));
     const Counters& c = quiet.counters;
     EXPECT_EQ(c.blocks_rejected + c.blocks_accepted + c.blocks_partial, 0u);
+    EXPECT_EQ(c.subblocks_rejected + c.subblocks_accepted + c.subblocks_partial, 0u);
     EXPECT_EQ(c.hiz_rejected + c.hiz_accepted, 0u);
     EXPECT_EQ(c.samples_covered + c.samples_passed + c.pixels_shaded, 0u);
     // The triangle and bin counts are kept either way.
     EXPECT_EQ(c.triangles_rasterized, counted.counters.triangles_rasterized);
     EXPECT_EQ(c.bin_references, counted.counters.bin_references);
+  });
+}
+
+TEST(FastEngine, SubBlocksSkipLaneGroupsOutsideAnEdgeAndTestOnlyTheEdgesCrossingThem) {
+  // Triangles of about 300 px (the general path): a partial block's lane groups are rejected,
+  // accepted or partial by their corner pixels' edge values against the samples' thresholds.
+  // Coverage stays the reference's (flat depth per triangle, compare always: every sample's
+  // depth names the last triangle covering it). The same blocks are partial at 1 and at 4
+  // samples (block tests span a pixel's whole sample area; Hi-Z is off so none is skipped), so
+  // the same sub-blocks are tested; 4 samples lie off the pixel centre, so a sub-block wholly
+  // inside or outside at 4 samples is so at 1, and some that are at 1 are not at 4.
+  Scene s = soup(760, 3000, 300.0f, true);
+  Scene multi = s;
+  multi.samples = 4;
+  const Result ref1 = render(s, Backend::kReference);
+  const Result ref4 = render(multi, Backend::kReference);
+  for_each_config([&](const Config& config) {
+    const auto draw = [&](const Scene& scene, bool sub_blocks) {
+      return render(scene, Backend::kFast, config, kDefaultBinMemoryBudget, true, false, 64, 8,
+                    sub_blocks);
+    };
+    const Result one = draw(s, true), four = draw(multi, true);
+    expect_same_coverage(one, ref1, "1 sample");
+    expect_same_coverage(four, ref4, "4 samples");
+    // Off (the default): the same bytes, no sub-block counted.
+    const Result plain = draw(multi, false);
+    EXPECT_EQ(plain.rgba8, four.rgba8);
+    EXPECT_EQ(0, std::memcmp(plain.depth.data(), four.depth.data(), four.depth.size() * 4));
+    EXPECT_EQ(plain.counters.subblocks_rejected + plain.counters.subblocks_accepted +
+                  plain.counters.subblocks_partial,
+              0u);
+    const Counters& a = one.counters;
+    const Counters& b = four.counters;
+    EXPECT_GT(a.subblocks_rejected, 1000u);
+    EXPECT_GT(a.subblocks_accepted, 1000u);
+    EXPECT_GT(b.subblocks_partial, 1000u);  // at 1 sample, none with one lane (scalar)
+    EXPECT_EQ(a.subblocks_rejected + a.subblocks_accepted + a.subblocks_partial,
+              b.subblocks_rejected + b.subblocks_accepted + b.subblocks_partial);
+    EXPECT_LT(b.subblocks_rejected, a.subblocks_rejected);
+    EXPECT_LT(b.subblocks_accepted, a.subblocks_accepted);
   });
 }
 

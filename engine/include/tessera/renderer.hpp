@@ -64,6 +64,12 @@ struct RendererOptions {
   // inside at once, and tests those one by one only where an edge crosses it. Same image and
   // same block counters; 8 is the fastest on every workload measured (docs/TRADEOFFS.md).
   uint32_t block_size = 8;
+  // Sub-block tests: in a partial block, each SIMD lane group (8x2 pixels with 16 lanes, 8x1
+  // with 8, 4x1 with 4) is first classified by the edge values at its corner pixels against
+  // the samples' offsets: outside an edge it is skipped, and edges it lies wholly inside are not
+  // tested. Same image; off by default because the scalar test costs more than the vector edge
+  // compares it saves (benchmarks/RESULTS.md).
+  bool sub_block_tests = false;
 };
 
 // One draw call's vertex data, all in caller-owned memory that the renderer only reads.
@@ -93,6 +99,12 @@ struct Counters {
   uint64_t blocks_rejected = 0;  // 8x8 blocks of a triangle's tiles outside an edge
   uint64_t blocks_accepted = 0;  // blocks fully inside all three edges
   uint64_t blocks_partial = 0;   // blocks that needed per-sample edge tests
+  // Sub-blocks (a partial block's SIMD lane groups: 8x2 pixels with 16 lanes, 8x1 with 8, 4x1
+  // with 4) of triangles that are not small: outside an edge, inside every edge crossing
+  // their block (no edge tests), or still partial.
+  uint64_t subblocks_rejected = 0;
+  uint64_t subblocks_accepted = 0;
+  uint64_t subblocks_partial = 0;
   uint64_t hiz_rejected = 0;     // blocks skipped because the triangle is behind them
   uint64_t hiz_accepted = 0;     // fully covered blocks written without reading depth
   uint64_t samples_covered = 0;  // inside a triangle and tested (not in Hi-Z-rejected blocks)

@@ -7,7 +7,9 @@
 // For one triangle in one tile it walks the 8x8 blocks under the triangle's bounding box. Each
 // block is classified by the edge functions at its corners (Abrash 2009: an edge's extremes over
 // a rectangle lie at two corners): outside an edge (rejected), inside all three (accepted: no
-// edge tests), or partial; then Hi-Z may reject it or prove every sample passes. With a block
+// edge tests), or partial; then Hi-Z may reject it or prove every sample passes. A partial
+// block's lane groups (its sub-blocks) take the same test from their corner pixels: outside an
+// edge (skipped), or inside some edges (not tested there). With a block
 // size of 16 or 32 (RendererOptions::block_size) the same test first classifies 2x2 or 4x4
 // blocks at once, testing the blocks one by one only where an edge crosses. Lanes are the
 // block's pixels in row-major order, only the rows the triangle touches; each sample is a pass
@@ -187,11 +189,15 @@ struct TriangleState {
   // A sample is inside edge e when E(pixel centre) + offset(sample) >= 0, i.e. when
   // E(pixel centre) > -1 - offset: one compare per edge and sample, no add.
   int32_t edge_threshold[16][3];
+  int32_t threshold_lo[3], threshold_hi[3];  // the smallest and largest over the samples
+  // An edge's smallest and largest change from a sub-block's first pixel centre to its others.
+  int32_t sub_lo[3], sub_hi[3];
   float z_offset[16];
   uint32_t samples;
   int32_t px0, px1, py0, py1;  // the bounding box inside the tile
   int32_t tile_bx, tile_by;
   uint32_t covered = 0, passed = 0, shaded = 0;
+  uint32_t sub_rejected = 0, sub_accepted = 0, sub_partial = 0;
 };
 
 // Rasterizes the triangle over block (bx, by) of the tile: coverage of the edges in edge_mask
@@ -199,7 +205,7 @@ struct TriangleState {
 // coverage bits, then the early depth test, shading once per pixel and the writes. Plane bases
 // are computed at the first lane group with coverage, so blocks the triangle misses cost only
 // their edge tests.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kSubBlocks, class VI>
 HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
                              VI lane_e0, VI lane_e1, VI lane_e2, int32_t bx, int32_t by,
                              const int32_t* e_block, uint32_t edge_mask, bool wide,
@@ -250,12 +256,38 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
     }
     // Edge values at the lanes' pixel centres: the group's first pixel plus lane offsets.
     const int32_t gx = static_cast<int32_t>(i & 7), gy = static_cast<int32_t>(i >> 3);
-    const auto e0 =
-        hn::Add(hn::Set(di, e_block[0] + st.step_x[0] * gx + st.step_y[0] * gy), lane_e0);
-    const auto e1 =
-        hn::Add(hn::Set(di, e_block[1] + st.step_x[1] * gx + st.step_y[1] * gy), lane_e1);
-    const auto e2 =
-        hn::Add(hn::Set(di, e_block[2] + st.step_x[2] * gx + st.step_y[2] * gy), lane_e2);
+    const int32_t eg[3] = {e_block[0] + st.step_x[0] * gx + st.step_y[0] * gy,
+                           e_block[1] + st.step_x[1] * gx + st.step_y[1] * gy,
+                           e_block[2] + st.step_x[2] * gx + st.step_y[2] * gy};
+    uint32_t group_mask = edge_mask;
+    if constexpr (kSubBlocks) {
+      // The sub-block test: the lane group's pixels as a sub-block of a partial block. An edge
+      // crossing the block is exact in int32 at every pixel centre of it (block_kernel.hpp), and
+      // g + sub_hi, g + sub_lo are its values at two of them. Outside the edge at every sample
+      // of every pixel: rejected. Inside at all of them: that edge needs no test here.
+      if (edge_mask != 0 && !wide) {
+        bool outside = false;
+        for (int e = 0; e < 3; ++e) {
+          if (!(edge_mask & (1u << e))) continue;
+          outside |= eg[e] + st.sub_hi[e] <= st.threshold_lo[e];
+          if (eg[e] + st.sub_lo[e] > st.threshold_hi[e]) group_mask &= ~(1u << e);
+        }
+        if (outside) {
+          if constexpr (kCount) ++st.sub_rejected;
+          continue;
+        }
+        if constexpr (kCount) {
+          if (group_mask == 0) {
+            ++st.sub_accepted;
+          } else {
+            ++st.sub_partial;
+          }
+        }
+      }
+    }
+    const auto e0 = hn::Add(hn::Set(di, eg[0]), lane_e0);
+    const auto e1 = hn::Add(hn::Set(di, eg[1]), lane_e1);
+    const auto e2 = hn::Add(hn::Set(di, eg[2]), lane_e2);
     const auto cov_bits = wide ? hn::Load(du, coverage_bits + i) : hn::Zero(du);
     const auto fx = hn::Load(df, kPixels.fx + i);
     const auto fy = hn::Load(df, kPixels.fy + i);
@@ -270,9 +302,9 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
         cov = hn::And(cov, hn::RebindMask(di, hn::TestBit(cov_bits, hn::Set(du, 1u << s))));
       } else {
         // Inside when E + offset >= 0, i.e. E > -1 - offset (integer lanes have no >=).
-        if (edge_mask & 1) cov = hn::And(cov, hn::Gt(e0, hn::Set(di, st.edge_threshold[s][0])));
-        if (edge_mask & 2) cov = hn::And(cov, hn::Gt(e1, hn::Set(di, st.edge_threshold[s][1])));
-        if (edge_mask & 4) cov = hn::And(cov, hn::Gt(e2, hn::Set(di, st.edge_threshold[s][2])));
+        if (group_mask & 1) cov = hn::And(cov, hn::Gt(e0, hn::Set(di, st.edge_threshold[s][0])));
+        if (group_mask & 2) cov = hn::And(cov, hn::Gt(e1, hn::Set(di, st.edge_threshold[s][1])));
+        if (group_mask & 4) cov = hn::And(cov, hn::Gt(e2, hn::Set(di, st.edge_threshold[s][2])));
       }
       if (hn::AllFalse(di, cov)) continue;
       if (!have_bases) compute_bases();
@@ -378,13 +410,15 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
 
 // raster_block out of line, for the general path: one copy of the block code for all its block
 // loops (small triangles inline theirs); next to a block's 64 pixels the call costs little.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
+// With and without the sub-block tests: a copy of its own for each, as the tests in the lane
+// loop, even skipped, cost the loop without them 1-3% (benchmarks/RESULTS.md).
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kSubBlocks, class VI>
 HWY_NOINLINE void raster_block_outlined(const TileContext& tc, const TriangleSetup& t,
                                         TriangleState& st, VI lane_e0, VI lane_e1, VI lane_e2,
                                         int32_t bx, int32_t by, const int32_t* e_block,
                                         uint32_t edge_mask, bool wide, bool test_depth) {
-  raster_block<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by,
-                                               e_block, edge_mask, wide, test_depth);
+  raster_block<kDepth, kColor, kMulti, kCount, kSubBlocks>(
+      tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block, edge_mask, wide, test_depth);
 }
 
 // What the general path's block tests share for one triangle.
@@ -450,8 +484,13 @@ HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, Trian
           static_cast<int32_t>(block_corner[e] + (int64_t{t.a[e]} + t.b[e]) * bt.corner_to_centre);
     }
   }
-  raster_block_outlined<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx,
-                                                        by, e_block, edge_mask, wide, test_depth);
+  if (tc.sub_blocks) {
+    raster_block_outlined<kDepth, kColor, kMulti, kCount, true>(
+        tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block, edge_mask, wide, test_depth);
+  } else {
+    raster_block_outlined<kDepth, kColor, kMulti, kCount, false>(
+        tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block, edge_mask, wide, test_depth);
+  }
 }
 
 // The blocks from (bx_begin, by_begin) to (bx_end, by_end) (inclusive). With `classify`, each
@@ -567,6 +606,24 @@ HWY_INLINE void set_up_state(const TileContext& tc, const TriangleSetup& t, Tria
   }
 }
 
+// What the general path's sub-block tests need (after set_up_state).
+HWY_INLINE void set_up_sub_blocks(TriangleState& st) {
+  // Sub-blocks are lane groups: lanes / 8 rows of 8 pixels, or the first `lanes` pixels of a
+  // row on targets with fewer than 8 lanes.
+  const int32_t lanes = static_cast<int32_t>(hn::Lanes(hn::ScalableTag<int32_t>()));
+  const int32_t sub_cols = std::min(lanes, 8) - 1, sub_rows = std::max(lanes / 8, 1) - 1;
+  for (int e = 0; e < 3; ++e) {
+    st.threshold_lo[e] = st.threshold_hi[e] = st.edge_threshold[0][e];
+    for (uint32_t s = 1; s < st.samples; ++s) {
+      st.threshold_lo[e] = std::min(st.threshold_lo[e], st.edge_threshold[s][e]);
+      st.threshold_hi[e] = std::max(st.threshold_hi[e], st.edge_threshold[s][e]);
+    }
+    const int32_t dx = st.step_x[e] * sub_cols, dy = st.step_y[e] * sub_rows;
+    st.sub_lo[e] = std::min(dx, 0) + std::min(dy, 0);
+    st.sub_hi[e] = std::max(dx, 0) + std::max(dy, 0);
+  }
+}
+
 // An edge's change from a block's first pixel to each lane's pixel.
 template <class DI>
 HWY_INLINE hn::Vec<DI> lane_steps(DI di, int32_t step_x, int32_t step_y) {
@@ -585,6 +642,7 @@ HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
   const int shift = static_cast<int>(tc.subpixel_bits) - 4;
   TriangleState st;
   set_up_state<kMulti>(tc, t, st);
+  if (tc.sub_blocks) set_up_sub_blocks(st);
   const auto lane_e0 = lane_steps(di, st.step_x[0], st.step_y[0]);
   const auto lane_e1 = lane_steps(di, st.step_x[1], st.step_y[1]);
   const auto lane_e2 = lane_steps(di, st.step_x[2], st.step_y[2]);
@@ -623,6 +681,9 @@ HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
     counters.samples_covered += st.covered;
     counters.samples_passed += st.passed;
     counters.pixels_shaded += st.shaded;
+    counters.subblocks_rejected += st.sub_rejected;
+    counters.subblocks_accepted += st.sub_accepted;
+    counters.subblocks_partial += st.sub_partial;
   }
 }
 
@@ -670,8 +731,8 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       if (outside) {
         ++rejected;
       } else {
-        raster_block<kDepth, kColor, kMulti, kCount>(tc, t, st, lane_e0, lane_e1, lane_e2, bx, by,
-                                                     e_block, 7, false, kTestDepth);
+        raster_block<kDepth, kColor, kMulti, kCount, false>(tc, t, st, lane_e0, lane_e1, lane_e2,
+                                                            bx, by, e_block, 7, false, kTestDepth);
       }
       for (int e = 0; e < 3; ++e)
         e_block[e] += st.step_x[e] * 8;

@@ -44,6 +44,7 @@ struct TileContext {
   // 8x8 blocks per side of the coarse blocks the corner test classifies before their blocks
   // (RendererOptions::block_size / 8): 1, 2 or 4.
   uint32_t coarse_blocks = 1;
+  bool sub_blocks = false;  // sub-block tests in partial blocks (RendererOptions::sub_block_tests)
   // Fixed-point depth formats store round(z * depth_scale); 0 for float depth.
   float depth_scale = 0.0f;
   // Sample offsets from the pixel centre, in fixed point and in pixels.

@@ -54,6 +54,7 @@ struct FastRasterizer::State {
   bool hiz = true;
   uint32_t bin_tile_log2 = binning::kTileSizeLog2;
   uint32_t coarse_blocks = 1;  // 8x8 blocks per side of the blocks the corner test classifies
+  bool sub_blocks = false;
   const KernelTable* kernels = nullptr;
   SetupRangeFn setup = nullptr;
   std::vector<Chunk> chunks;
@@ -71,6 +72,7 @@ FastRasterizer::FastRasterizer(int64_t simd_target, const RendererOptions& optio
   state_->hiz = options.hiz;
   state_->bin_tile_log2 = static_cast<uint32_t>(std::countr_zero(options.bin_tile_size));
   state_->coarse_blocks = options.block_size / detail::kBlockSize;
+  state_->sub_blocks = options.sub_block_tests;
   state_->kernels = &kernel_table(simd_target);
   state_->setup = setup_kernel(simd_target);
 }
@@ -99,6 +101,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   draw.subpixel_bits = bits;
   draw.compare = pipeline.depth_compare;
   draw.coarse_blocks = st.coarse_blocks;
+  draw.sub_blocks = st.sub_blocks;
   draw.depth_scale = static_cast<float>(detail::depth_scale(fb.desc.depth_format));
   const auto pattern = sample_pattern(samples);
   for (uint32_t s = 0; s < samples; ++s) {
@@ -304,6 +307,9 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     counters.blocks_rejected += c.blocks_rejected;
     counters.blocks_accepted += c.blocks_accepted;
     counters.blocks_partial += c.blocks_partial;
+    counters.subblocks_rejected += c.subblocks_rejected;
+    counters.subblocks_accepted += c.subblocks_accepted;
+    counters.subblocks_partial += c.subblocks_partial;
     counters.hiz_rejected += c.hiz_rejected;
     counters.hiz_accepted += c.hiz_accepted;
     counters.samples_covered += c.samples_covered;
