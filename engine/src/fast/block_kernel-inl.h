@@ -256,16 +256,16 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
     }
     // Edge values at the lanes' pixel centres: the group's first pixel plus lane offsets.
     const int32_t gx = static_cast<int32_t>(i & 7), gy = static_cast<int32_t>(i >> 3);
-    const int32_t eg[3] = {e_block[0] + st.step_x[0] * gx + st.step_y[0] * gy,
-                           e_block[1] + st.step_x[1] * gx + st.step_y[1] * gy,
-                           e_block[2] + st.step_x[2] * gx + st.step_y[2] * gy};
     uint32_t group_mask = edge_mask;
     if constexpr (kSubBlocks) {
       // The sub-block test: the lane group's pixels as a sub-block of a partial block. An edge
       // crossing the block is exact in int32 at every pixel centre of it (block_kernel.hpp), and
-      // g + sub_hi, g + sub_lo are its values at two of them. Outside the edge at every sample
-      // of every pixel: rejected. Inside at all of them: that edge needs no test here.
+      // eg + sub_hi, eg + sub_lo are its values at two of them. Outside the edge at every
+      // sample of every pixel: rejected. Inside at all of them: that edge needs no test here.
       if (edge_mask != 0 && !wide) {
+        const int32_t eg[3] = {e_block[0] + st.step_x[0] * gx + st.step_y[0] * gy,
+                               e_block[1] + st.step_x[1] * gx + st.step_y[1] * gy,
+                               e_block[2] + st.step_x[2] * gx + st.step_y[2] * gy};
         bool outside = false;
         for (int e = 0; e < 3; ++e) {
           if (!(edge_mask & (1u << e))) continue;
@@ -285,9 +285,12 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
         }
       }
     }
-    const auto e0 = hn::Add(hn::Set(di, eg[0]), lane_e0);
-    const auto e1 = hn::Add(hn::Set(di, eg[1]), lane_e1);
-    const auto e2 = hn::Add(hn::Set(di, eg[2]), lane_e2);
+    const auto e0 =
+        hn::Add(hn::Set(di, e_block[0] + st.step_x[0] * gx + st.step_y[0] * gy), lane_e0);
+    const auto e1 =
+        hn::Add(hn::Set(di, e_block[1] + st.step_x[1] * gx + st.step_y[1] * gy), lane_e1);
+    const auto e2 =
+        hn::Add(hn::Set(di, e_block[2] + st.step_x[2] * gx + st.step_y[2] * gy), lane_e2);
     const auto cov_bits = wide ? hn::Load(du, coverage_bits + i) : hn::Zero(du);
     const auto fx = hn::Load(df, kPixels.fx + i);
     const auto fy = hn::Load(df, kPixels.fy + i);
