@@ -664,6 +664,81 @@ TEST(FastEngine, SubBlocksSkipLaneGroupsOutsideAnEdgeAndTestOnlyTheEdgesCrossing
   });
 }
 
+TEST(FastEngine, ClearsTakeEffectWhereverTheFramebufferIsNextUsed) {
+  // Clears are recorded and written per tile when the fast engine next draws the tile, or
+  // before any other use. A sequence of clears, draws (one without triangles, one covering
+  // only part of the screen) and reads in between must leave the same bytes as the same
+  // sequence with every clear written at once (a read right after each clear forces it), for
+  // every bin tile size (32-pixel bin tiles share a storage tile), sample count and colour
+  // format; in RGBA8 they are also the reference's bytes.
+  // Flat depth per triangle (exact in both engines), tested with <.
+  Scene first = soup(770, 300, 40.0f, true);
+  Scene second = soup(771, 300, 40.0f, true);
+  first.pipeline.depth_compare = second.pipeline.depth_compare = CompareOp::kLess;
+  for (Float4& p : second.positions)
+    p.x = std::min(p.x, 0.0f);  // the left half of the screen only
+  for (const uint32_t samples : {1u, 4u}) {
+    for (const ColorFormat format : {ColorFormat::kRGBA8, ColorFormat::kRGBA32F}) {
+      SCOPED_TRACE("samples " + std::to_string(samples) +
+                   (format == ColorFormat::kRGBA8 ? ", RGBA8" : ", RGBA32F"));
+      const auto run = [&](Backend backend, const Config& config, uint32_t bin_tile, bool eager) {
+        RendererOptions options;
+        options.backend = backend;
+        options.threads = config.threads;
+        options.simd = config.target;
+        options.bin_tile_size = bin_tile;
+        Renderer renderer(options);
+        Framebuffer fb({first.width, first.height, samples, format, DepthFormat::kFloat32});
+        const auto draw = [&](const Scene& s) {
+          DrawInput input;
+          input.positions = s.positions;
+          input.attributes = s.colors;
+          input.attribute_count = 4;
+          renderer.draw(fb, s.pipeline, input);
+        };
+        const auto written = [&] {
+          if (eager) (void)fb.read_sample_depth();
+        };
+        std::vector<std::vector<float>> seen;
+        fb.clear_color({0.1f, 0.2f, 0.3f, 1.0f});
+        fb.clear_depth(1.0f);
+        written();
+        draw(Scene{});  // no triangles: the clears stay pending
+        seen.push_back(fb.read_rgba32f());
+        draw(first);
+        fb.clear_color({0.9f, 0.8f, 0.7f, 0.5f});  // colour only: the depth of `first` stays
+        written();
+        draw(second);
+        seen.push_back(fb.read_rgba32f());
+        seen.push_back(fb.read_sample_depth());
+        fb.clear_depth(0.5f);
+        written();
+        seen.push_back(fb.read_sample_depth());
+        draw(first);
+        seen.push_back(fb.read_rgba32f());
+        return seen;
+      };
+      const auto expect_same = [](const std::vector<std::vector<float>>& a,
+                                  const std::vector<std::vector<float>>& b, const char* what) {
+        ASSERT_EQ(a.size(), b.size());
+        for (size_t i = 0; i < a.size(); ++i) {
+          EXPECT_EQ(0, std::memcmp(a[i].data(), b[i].data(), a[i].size() * 4))
+              << what << ": read " << i;
+        }
+      };
+      const auto ref = run(Backend::kReference, {SimdTarget::kAuto, 1}, 64, false);
+      for_each_config([&](const Config& config) {
+        for (const uint32_t bin_tile : {32u, 64u, 128u}) {
+          SCOPED_TRACE("bin tile " + std::to_string(bin_tile));
+          const auto fast = run(Backend::kFast, config, bin_tile, false);
+          expect_same(fast, run(Backend::kFast, config, bin_tile, true), "written at once");
+          if (format == ColorFormat::kRGBA8) expect_same(fast, ref, "reference");
+        }
+      });
+    }
+  }
+}
+
 TEST(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
   Scene s;
   // A screen-filling pair of triangles in front, then many triangles behind it, large enough

@@ -1,6 +1,7 @@
 // Framebuffer allocation, clears and read-back with the MSAA box resolve.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <new>
 #include <string>
 
@@ -65,6 +66,7 @@ Framebuffer::Framebuffer(const FramebufferDesc& desc) {
     s->hiz_min.assign(size_t{s->grid.tile_count()} * detail::kBlocksPerTile, far);
     s->hiz_max.assign(size_t{s->grid.tile_count()} * detail::kBlocksPerTile, far);
     s->hiz_valid = true;
+    s->pending.assign(s->grid.tile_count(), 0);
   } catch (const std::bad_alloc&) {
     throw Error(ErrorCode::kOutOfMemory,
                 "framebuffer allocation of " + std::to_string(bytes >> 20) + " MiB failed");
@@ -80,18 +82,16 @@ const FramebufferDesc& Framebuffer::desc() const noexcept {
   return storage_->desc;
 }
 
+// A clear is recorded per tile and written when the tile is next drawn or read (see
+// FramebufferStorage::pending).
 void Framebuffer::clear_color(std::array<float, 4> rgba) {
   detail::FramebufferStorage& s = *storage_;
-  if (s.desc.color_format == ColorFormat::kRGBA8) {
-    std::array<uint8_t, 4> v{};
-    for (int c = 0; c < 4; ++c)
-      v[c] = to_unorm8(rgba[c]);
-    for (size_t i = 0; i < s.rgba8.size(); i += 4)
-      std::copy(v.begin(), v.end(), &s.rgba8[i]);
-  } else {
-    for (size_t i = 0; i < s.rgba32f.size(); i += 4)
-      std::copy(rgba.begin(), rgba.end(), &s.rgba32f[i]);
-  }
+  for (int c = 0; c < 4; ++c)
+    s.clear_rgba8[c] = to_unorm8(rgba[c]);
+  s.clear_rgba32f = rgba;
+  for (uint8_t& p : s.pending)
+    p |= detail::FramebufferStorage::kColorPending;
+  s.any_pending.store(true, std::memory_order_release);
 }
 
 void Framebuffer::clear_depth(float depth) {
@@ -101,14 +101,43 @@ void Framebuffer::clear_depth(float depth) {
       scale > 0.0 && !std::isnan(depth)
           ? detail::encode_depth(std::clamp(static_cast<double>(depth), 0.0, 1.0), scale)
           : depth;
-  std::fill(storage_->depth.begin(), storage_->depth.end(), stored);
+  storage_->clear_depth = stored;
+  for (uint8_t& p : storage_->pending)
+    p |= detail::FramebufferStorage::kDepthPending;
+  storage_->any_pending.store(true, std::memory_order_release);
   std::fill(storage_->hiz_min.begin(), storage_->hiz_min.end(), stored);
   std::fill(storage_->hiz_max.begin(), storage_->hiz_max.end(), stored);
   storage_->hiz_valid = !std::isnan(depth);
 }
 
+namespace detail {
+
+void FramebufferStorage::write_pending(uint32_t tile) {
+  const uint8_t p = pending[tile];
+  if (p == 0) return;
+  const size_t values = size_t{desc.samples} * binning::kTilePixels;
+  const size_t first = size_t{tile} * values;
+  if (p & kColorPending) {
+    if (!rgba8.empty()) {
+      uint32_t v;
+      std::memcpy(&v, clear_rgba8.data(), 4);
+      uint32_t* c = reinterpret_cast<uint32_t*>(rgba8.data()) + first;
+      std::fill(c, c + values, v);
+    } else {
+      float* c = rgba32f.data() + first * 4;
+      for (size_t i = 0; i < values; ++i)
+        std::copy(clear_rgba32f.begin(), clear_rgba32f.end(), c + i * 4);
+    }
+  }
+  if (p & kDepthPending)
+    std::fill(depth.data() + first, depth.data() + first + values, clear_depth);
+  pending[tile] = 0;
+}
+
+}  // namespace detail
+
 std::vector<uint8_t> Framebuffer::read_rgba8() const {
-  const detail::FramebufferStorage& s = *storage_;
+  const detail::FramebufferStorage& s = detail::FramebufferAccess::storage(*this);
   const uint32_t n = s.desc.samples;
   std::vector<uint8_t> out(size_t{s.desc.width} * s.desc.height * 4);
   std::vector<float> f;
@@ -132,7 +161,7 @@ std::vector<uint8_t> Framebuffer::read_rgba8() const {
 }
 
 std::vector<float> Framebuffer::read_rgba32f() const {
-  const detail::FramebufferStorage& s = *storage_;
+  const detail::FramebufferStorage& s = detail::FramebufferAccess::storage(*this);
   const uint32_t n = s.desc.samples;
   if (s.desc.color_format == ColorFormat::kRGBA8) {
     std::vector<uint8_t> bytes = read_rgba8();
@@ -157,7 +186,7 @@ std::vector<float> Framebuffer::read_rgba32f() const {
 }
 
 std::vector<float> Framebuffer::read_depth() const {
-  const detail::FramebufferStorage& s = *storage_;
+  const detail::FramebufferStorage& s = detail::FramebufferAccess::storage(*this);
   const double scale = detail::depth_scale(s.desc.depth_format);
   std::vector<float> out(size_t{s.desc.width} * s.desc.height);
   for (uint32_t y = 0; y < s.desc.height; ++y) {
@@ -170,7 +199,7 @@ std::vector<float> Framebuffer::read_depth() const {
 }
 
 std::vector<float> Framebuffer::read_sample_depth() const {
-  const detail::FramebufferStorage& s = *storage_;
+  const detail::FramebufferStorage& s = detail::FramebufferAccess::storage(*this);
   const double scale = detail::depth_scale(s.desc.depth_format);
   const uint32_t n = s.desc.samples;
   std::vector<float> out(size_t{s.desc.width} * s.desc.height * n);

@@ -5,9 +5,12 @@
 // (256 bytes of depth), which SIMD kernels load and store whole.
 #pragma once
 
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 #include "binning/tile_grid.hpp"
@@ -93,6 +96,31 @@ struct FramebufferStorage {
   std::vector<float> hiz_max;
   bool hiz_valid = false;
 
+  // Clears recorded by Framebuffer::clear_color and clear_depth but not yet written, per tile:
+  // bit 0 colour, bit 1 depth (Hi-Z bounds are cleared at once). The fast triangle path writes
+  // a tile's pending clears when it starts drawing that tile, in parallel and into cache, and
+  // visits every tile; FramebufferAccess::storage writes all of them before any other access.
+  static constexpr uint8_t kColorPending = 1, kDepthPending = 2;
+  std::vector<uint8_t> pending;
+  // Set by the clears (the caller's exclusive access); const reads may write the pending
+  // clears from several threads at once, hence the atomic flag and the lock.
+  std::atomic<bool> any_pending{false};
+  std::mutex pending_lock;
+  std::array<uint8_t, 4> clear_rgba8{};
+  std::array<float, 4> clear_rgba32f{};
+  float clear_depth = 0.0f;  // encoded
+
+  // Writes tile's pending clears (defined in framebuffer.cpp).
+  void write_pending(uint32_t tile);
+  void write_all_pending() {
+    if (!any_pending.load(std::memory_order_acquire)) return;
+    const std::lock_guard<std::mutex> hold(pending_lock);
+    if (!any_pending.load(std::memory_order_relaxed)) return;
+    for (uint32_t t = 0; t < pending.size(); ++t)
+      write_pending(t);
+    any_pending.store(false, std::memory_order_release);
+  }
+
   size_t sample_index(uint32_t x, uint32_t y, uint32_t s) const {
     const size_t tile = grid.tile_of(x, y);
     return (tile * desc.samples + s) * binning::kTilePixels + in_tile(x, y);
@@ -100,8 +128,17 @@ struct FramebufferStorage {
 };
 
 struct FramebufferAccess {
-  static FramebufferStorage& storage(Framebuffer& fb) { return *fb.storage_; }
-  static const FramebufferStorage& storage(const Framebuffer& fb) { return *fb.storage_; }
+  // The storage with every pending clear written.
+  static FramebufferStorage& storage(Framebuffer& fb) {
+    fb.storage_->write_all_pending();
+    return *fb.storage_;
+  }
+  static const FramebufferStorage& storage(const Framebuffer& fb) {
+    fb.storage_->write_all_pending();
+    return *fb.storage_;
+  }
+  // The storage as it is, pending clears included: for the fast triangle path only.
+  static FramebufferStorage& deferred_storage(Framebuffer& fb) { return *fb.storage_; }
 };
 }  // namespace detail
 

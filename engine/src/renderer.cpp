@@ -91,7 +91,9 @@ void Renderer::reset_counters() noexcept {
 void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input) {
   const bool cull_non_finite = impl_->options.non_finite == NonFiniteVertices::kCull;
   validate_draw(target, pipeline, input, !cull_non_finite);
-  detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
+  // Pending clears are left to the fast engine's tiles (draw_triangles writes them for the
+  // reference).
+  detail::FramebufferStorage& storage = detail::FramebufferAccess::deferred_storage(target);
   if (!cull_non_finite) {
     draw_triangles(storage, pipeline, input);
     return;
@@ -124,6 +126,7 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
 void Renderer::draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,
                               const DrawInput& input) {
   if (impl_->options.backend == Backend::kReference) {
+    storage.write_all_pending();
     // The reference writes depth without maintaining the fast engine's Hi-Z bounds.
     if (pipeline.depth_test && pipeline.depth_write) storage.hiz_valid = false;
     reference::draw(storage, pipeline, input, impl_->counters);

@@ -291,6 +291,9 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     }
     ++counters.bin_passes;
 
+    // Bin tiles smaller than a storage tile share it: its pending clears are written first.
+    // Otherwise each storage tile's are written by the one task that draws it.
+    if (grid.size_log2 < binning::kTileSizeLog2) fb.write_all_pending();
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<uint32_t>(0, grid.tile_count(), 1),
                         [&](const tbb::blocked_range<uint32_t>& r) {
@@ -300,6 +303,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
                           }
                         });
     });
+    fb.any_pending.store(false, std::memory_order_release);  // every tile was visited
     start = st.chunks[last].stopped_at;
   }
 
