@@ -51,6 +51,8 @@ class Framebuffer {
   uint32_t height() const noexcept { return desc().height; }
   uint32_t samples() const noexcept { return desc().samples; }
 
+  // Clears take effect at once for every use of the framebuffer; the fast engine writes them
+  // tile by tile as it next draws there (in parallel, into cache), anything else first.
   void clear_color(std::array<float, 4> rgba);
   // Depth in [0, 1] (stored in the framebuffer's depth format).
   void clear_depth(float depth);
