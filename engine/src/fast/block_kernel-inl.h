@@ -247,6 +247,10 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
   const size_t last =
       std::min<size_t>(64, (static_cast<size_t>(row_end) * 8 + lanes - 1) / lanes * lanes);
 
+  // Copies the compiler can keep in registers across the depth and colour stores of the
+  // sample loop (multisample only: at one sample the copies measured 2% slower on tiny).
+  const CompareOp compare = tc.compare;
+  const float depth_scale = tc.depth_scale;
   bool wrote = false;
   for (size_t i = first; i < last; i += lanes) {
     auto inside = all_lanes(di);
@@ -318,11 +322,12 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
                         : plane_at(df, fx, fy, z_base, t.z_dx, t.z_dy);
         z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
         // Fixed-point formats: the step nearest z, ties to even (as encode_depth).
-        if (tc.depth_scale > 0.0f) z = hn::Round(hn::Mul(z, hn::Set(df, tc.depth_scale)));
+        const float scale = kMulti ? depth_scale : tc.depth_scale;
+        if (scale > 0.0f) z = hn::Round(hn::Mul(z, hn::Set(df, scale)));
         float* plane = depth + s * kSamplePlane + i;
         if (test_depth) {
           const auto stored = hn::Load(df, plane);
-          pass = hn::And(pass, depth_passes(df, tc.compare, z, stored));
+          pass = hn::And(pass, depth_passes(df, kMulti ? compare : tc.compare, z, stored));
         }
         if constexpr (kDepth == DepthMode::kTestWrite) {
           if (!hn::AllFalse(df, pass)) {
