@@ -436,17 +436,21 @@ struct BlockTests {
   int64_t max_offset[3], min_offset[3], step_bx[3], step_by[3];
   int64_t corner_to_centre;  // from the corner of a pixel's sample area to its centre
   // The depth plane's range over a block's sample area from its corner, and the margin that
-  // covers the kernel's float rounding.
+  // covers the kernel's float rounding; the plane's change from one block to the next in x and
+  // y; the triangle's depth range widened by the margin.
   double z_lo_offset, z_hi_offset, z_margin;
+  double z_step_bx, z_step_by;
+  double z_floor, z_ceil;
 };
 
 // A block that passed the corner test, with the edges crossing it in edge_mask (block_corner:
-// the edges' values at the corner of its sample area): counted, then Hi-Z, then rasterized.
+// the edges' values at the corner of its sample area; z_corner: the depth plane's there):
+// counted, then Hi-Z, then rasterized.
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
 HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
                             const BlockTests& bt, Counters& counters, VI lane_e0, VI lane_e1,
                             VI lane_e2, int32_t bx, int32_t by, const int64_t* block_corner,
-                            uint32_t edge_mask) {
+                            double z_corner, uint32_t edge_mask) {
   if constexpr (kCount) {
     if (edge_mask == 0) {
       ++counters.blocks_accepted;
@@ -461,11 +465,8 @@ HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, Trian
         static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
     const bool clipped_block = bx * 8 + 7 > tc.x1 || by * 8 + 7 > tc.y1;
     if (hiz_dirty(tc, block)) refresh_hiz(tc, block, st.samples);
-    // The depth plane at the corner of the block's sample area.
-    const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;
-    const double z_corner = t.z0 + t.z_dx * (dx - 0.5) + t.z_dy * (dy - 0.5);
-    double lo_z = std::max<double>(z_corner + bt.z_lo_offset, t.z_min - bt.z_margin);
-    double hi_z = std::min<double>(z_corner + bt.z_hi_offset, t.z_max + bt.z_margin);
+    double lo_z = std::max(z_corner + bt.z_lo_offset, bt.z_floor);
+    double hi_z = std::min(z_corner + bt.z_hi_offset, bt.z_ceil);
     if (tc.depth_scale > 0.0f) {
       // In fixed-point steps: a stored step round(z * scale) lies in these bounds.
       lo_z = std::floor(lo_z * tc.depth_scale);
@@ -511,10 +512,16 @@ HWY_INLINE void visit_blocks(const TileContext& tc, const TriangleSetup& t, Tria
                              VI lane_e2, int32_t bx_begin, int32_t by_begin, int32_t bx_end,
                              int32_t by_end, const int64_t* corner, bool classify) {
   int64_t corner_row[3] = {corner[0], corner[1], corner[2]};
+  // The depth plane at the corner of the first block's sample area, stepped like the edges
+  // (double: the rounding of a few hundred steps is far below the Hi-Z margin).
+  double z_row = t.z0 + t.z_dx * (bx_begin * 8.0 - t.x0 - 0.5) +
+                 t.z_dy * (by_begin * 8.0 - t.y0 - 0.5);
   for (int32_t by = by_begin; by <= by_end; ++by) {
     int64_t block_corner[3] = {corner_row[0], corner_row[1], corner_row[2]};
+    double z_corner = z_row;
     for (int e = 0; e < 3; ++e)
       corner_row[e] += bt.step_by[e];
+    z_row += bt.z_step_by;
     for (int32_t bx = bx_begin; bx <= bx_end; ++bx) {
       uint32_t edge_mask = 0;
       bool rejected = false;
@@ -528,10 +535,12 @@ HWY_INLINE void visit_blocks(const TileContext& tc, const TriangleSetup& t, Tria
         if constexpr (kCount) ++counters.blocks_rejected;
       } else {
         visit_block<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1,
-                                                    lane_e2, bx, by, block_corner, edge_mask);
+                                                    lane_e2, bx, by, block_corner, z_corner,
+                                                    edge_mask);
       }
       for (int e = 0; e < 3; ++e)
         block_corner[e] += bt.step_bx[e];
+      z_corner += bt.z_step_bx;
     }
   }
 }
@@ -677,6 +686,10 @@ HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
   bt.z_margin = 1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
   bt.z_lo_offset = std::min(0.0, 8.0 * t.z_dx) + std::min(0.0, 8.0 * t.z_dy) - bt.z_margin;
   bt.z_hi_offset = std::max(0.0, 8.0 * t.z_dx) + std::max(0.0, 8.0 * t.z_dy) + bt.z_margin;
+  bt.z_step_bx = 8.0 * t.z_dx;
+  bt.z_step_by = 8.0 * t.z_dy;
+  bt.z_floor = t.z_min - bt.z_margin;
+  bt.z_ceil = t.z_max + bt.z_margin;
 
   if (tc.coarse_blocks == 1) {
     visit_blocks<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1, lane_e2,
