@@ -97,6 +97,18 @@ HWY_INLINE VF plane_at(DF df, VF fx, VF fy, float base, float gx, float gy) {
                  hn::Add(hn::Mul(fx, hn::Set(df, gx)), hn::Mul(fy, hn::Set(df, gy))));
 }
 
+// A plane at the lanes' pixels (fx, fy): base + (gx * x + gy * y), or base + offsets (the
+// same bits) with kOffsets.
+template <bool kOffsets, class DF, class VF>
+HWY_INLINE VF plane_of_lanes(DF df, VF fx, VF fy, const float* offsets, float base, float gx,
+                             float gy) {
+  if constexpr (kOffsets) {
+    return hn::Add(hn::Set(df, base), hn::Load(df, offsets));
+  } else {
+    return plane_at(df, fx, fy, base, gx, gy);
+  }
+}
+
 // Float colour to unorm8 as to_unorm8 does for finite values: clamp to [0, 1], then
 // truncate(c * 255 + 0.5) (multiply, then add: never fused, the build forbids contraction).
 template <class DF, class VF>
@@ -181,6 +193,35 @@ void refresh_hiz(const TileContext& tc, size_t block, uint32_t samples) {
   tc.hiz_max[block] = hn::GetLane(hn::MaxOfLanes(df, hi));
 }
 
+// The planes' change from a block's first pixel centre to each of its pixels, gx * x + gy * y
+// (plane_at's inner sum, so base + offset is the same bits): the general path computes them once
+// per triangle, at its first covered block, for all its blocks.
+struct PlaneOffsets {
+  alignas(64) float z[64];
+  alignas(64) float q[64];
+  alignas(64) float qa[4][64];
+  bool ready = false;
+};
+
+template <DepthMode kDepth, ColorMode kColor>
+HWY_INLINE void compute_plane_offsets(const TriangleSetup& t, PlaneOffsets& po) {
+  const hn::ScalableTag<float> df;
+  for (size_t i = 0; i < 64; i += hn::Lanes(df)) {
+    const auto fx = hn::Load(df, kPixels.fx + i);
+    const auto fy = hn::Load(df, kPixels.fy + i);
+    const auto offset = [&](float gx, float gy) {
+      return hn::Add(hn::Mul(fx, hn::Set(df, gx)), hn::Mul(fy, hn::Set(df, gy)));
+    };
+    if constexpr (kDepth != DepthMode::kOff) hn::Store(offset(t.z_dx, t.z_dy), df, po.z + i);
+    if constexpr (kColor != ColorMode::kOff) {
+      if (!t.flat_q) hn::Store(offset(t.q_dx, t.q_dy), df, po.q + i);
+      for (int c = 0; c < 4; ++c)
+        hn::Store(offset(t.qa_dx[c], t.qa_dy[c]), df, po.qa[c] + i);
+    }
+  }
+  po.ready = true;
+}
+
 // What one triangle's blocks share: per-pixel edge steps, the per-sample edge thresholds and
 // depth offsets, the pixels it may cover in this tile, and the counts it accumulates. Scalars
 // only: vectors travel as arguments (sizeless SIMD types cannot be members).
@@ -193,6 +234,7 @@ struct TriangleState {
   // An edge's smallest and largest change from a sub-block's first pixel centre to its others.
   int32_t sub_lo[3], sub_hi[3];
   float z_offset[16];
+  PlaneOffsets* offsets = nullptr;  // the general path's (raster_block's kOffsets)
   uint32_t samples;
   int32_t px0, px1, py0, py1;  // the bounding box inside the tile
   int32_t tile_bx, tile_by;
@@ -205,7 +247,8 @@ struct TriangleState {
 // coverage bits, then the early depth test, shading once per pixel and the writes. Plane bases
 // are computed at the first lane group with coverage, so blocks the triangle misses cost only
 // their edge tests.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kSubBlocks, class VI>
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kSubBlocks,
+          bool kOffsets, class VI>
 HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
                              VI lane_e0, VI lane_e1, VI lane_e2, int32_t bx, int32_t by,
                              const int32_t* e_block, uint32_t edge_mask, bool wide,
@@ -235,6 +278,9 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       q_base = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
       for (int c = 0; c < 4; ++c)
         qa_base[c] = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
+    }
+    if constexpr (kOffsets) {
+      if (!st.offsets->ready) compute_plane_offsets<kDepth, kColor>(t, *st.offsets);
     }
     have_bases = true;
   };
@@ -298,9 +344,9 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
     const auto cov_bits = wide ? hn::Load(du, coverage_bits + i) : hn::Zero(du);
     const auto fx = hn::Load(df, kPixels.fx + i);
     const auto fy = hn::Load(df, kPixels.fy + i);
-
     // The depth plane's change from the block's first pixel, shared by every sample (the
-    // same sums plane_at forms, so the bits do not change).
+    // same sums plane_at forms, so the bits do not change). Offsets are read in the sample
+    // loop, after the bases, with which they are computed.
     const auto z_rel = hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
     auto pass_bits = hn::Zero(du);  // bit s: sample s passed
     for (uint32_t s = 0; s < samples; ++s) {
@@ -318,8 +364,11 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
       auto pass = hn::RebindMask(df, cov);
       if constexpr (kDepth != DepthMode::kOff) {
-        auto z = kMulti ? hn::Add(hn::Set(df, z_base + st.z_offset[s]), z_rel)
-                        : plane_at(df, fx, fy, z_base, t.z_dx, t.z_dy);
+        auto z = kMulti
+                     ? hn::Add(hn::Set(df, z_base + st.z_offset[s]),
+                               (kOffsets ? hn::Load(df, st.offsets->z + i) : z_rel))
+                     : plane_of_lanes<kOffsets>(df, fx, fy, kOffsets ? st.offsets->z + i : nullptr,
+                                                z_base, t.z_dx, t.z_dy);
         z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
         // Fixed-point formats: the step nearest z, ties to even (as encode_depth).
         const float scale = kMulti ? depth_scale : tc.depth_scale;
@@ -345,12 +394,18 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       const auto any = hn::Ne(pass_bits, hn::Zero(du));
       if (hn::AllFalse(du, any)) continue;
       if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
-      auto r = plane_at(df, fx, fy, qa_base[0], t.qa_dx[0], t.qa_dy[0]);
-      auto g = plane_at(df, fx, fy, qa_base[1], t.qa_dx[1], t.qa_dy[1]);
-      auto b = plane_at(df, fx, fy, qa_base[2], t.qa_dx[2], t.qa_dy[2]);
-      auto a = plane_at(df, fx, fy, qa_base[3], t.qa_dx[3], t.qa_dy[3]);
+      PlaneOffsets* const po = st.offsets;
+      auto r = plane_of_lanes<kOffsets>(df, fx, fy, kOffsets ? po->qa[0] + i : nullptr, qa_base[0],
+                                        t.qa_dx[0], t.qa_dy[0]);
+      auto g = plane_of_lanes<kOffsets>(df, fx, fy, kOffsets ? po->qa[1] + i : nullptr, qa_base[1],
+                                        t.qa_dx[1], t.qa_dy[1]);
+      auto b = plane_of_lanes<kOffsets>(df, fx, fy, kOffsets ? po->qa[2] + i : nullptr, qa_base[2],
+                                        t.qa_dx[2], t.qa_dy[2]);
+      auto a = plane_of_lanes<kOffsets>(df, fx, fy, kOffsets ? po->qa[3] + i : nullptr, qa_base[3],
+                                        t.qa_dx[3], t.qa_dy[3]);
       if (!t.flat_q) {
-        const auto q = plane_at(df, fx, fy, q_base, t.q_dx, t.q_dy);
+        const auto q = plane_of_lanes<kOffsets>(df, fx, fy, kOffsets ? po->q + i : nullptr, q_base,
+                                                t.q_dx, t.q_dy);
         const auto inv_q = hn::Div(hn::Set(df, 1.0f), q);
         r = hn::Mul(r, inv_q);
         g = hn::Mul(g, inv_q);
@@ -425,7 +480,7 @@ HWY_NOINLINE void raster_block_outlined(const TileContext& tc, const TriangleSet
                                         TriangleState& st, VI lane_e0, VI lane_e1, VI lane_e2,
                                         int32_t bx, int32_t by, const int32_t* e_block,
                                         uint32_t edge_mask, bool wide, bool test_depth) {
-  raster_block<kDepth, kColor, kMulti, kCount, kSubBlocks>(
+  raster_block<kDepth, kColor, kMulti, kCount, kSubBlocks, true>(
       tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block, edge_mask, wide, test_depth);
 }
 
@@ -514,8 +569,8 @@ HWY_INLINE void visit_blocks(const TileContext& tc, const TriangleSetup& t, Tria
   int64_t corner_row[3] = {corner[0], corner[1], corner[2]};
   // The depth plane at the corner of the first block's sample area, stepped like the edges
   // (double: the rounding of a few hundred steps is far below the Hi-Z margin).
-  double z_row = t.z0 + t.z_dx * (bx_begin * 8.0 - t.x0 - 0.5) +
-                 t.z_dy * (by_begin * 8.0 - t.y0 - 0.5);
+  double z_row =
+      t.z0 + t.z_dx * (bx_begin * 8.0 - t.x0 - 0.5) + t.z_dy * (by_begin * 8.0 - t.y0 - 0.5);
   for (int32_t by = by_begin; by <= by_end; ++by) {
     int64_t block_corner[3] = {corner_row[0], corner_row[1], corner_row[2]};
     double z_corner = z_row;
@@ -660,6 +715,8 @@ HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
   TriangleState st;
   set_up_state<kMulti>(tc, t, st);
   if (tc.sub_blocks) set_up_sub_blocks(st);
+  PlaneOffsets offsets;
+  st.offsets = &offsets;
   const auto lane_e0 = lane_steps(di, st.step_x[0], st.step_y[0]);
   const auto lane_e1 = lane_steps(di, st.step_x[1], st.step_y[1]);
   const auto lane_e2 = lane_steps(di, st.step_x[2], st.step_y[2]);
@@ -752,8 +809,8 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       if (outside) {
         ++rejected;
       } else {
-        raster_block<kDepth, kColor, kMulti, kCount, false>(tc, t, st, lane_e0, lane_e1, lane_e2,
-                                                            bx, by, e_block, 7, false, kTestDepth);
+        raster_block<kDepth, kColor, kMulti, kCount, false, false>(
+            tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block, 7, false, kTestDepth);
       }
       for (int e = 0; e < 3; ++e)
         e_block[e] += st.step_x[e] * 8;
