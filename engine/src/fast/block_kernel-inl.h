@@ -359,8 +359,15 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
         if (group_mask & 2) cov = hn::And(cov, hn::Gt(e1, hn::Set(di, st.edge_threshold[s][1])));
         if (group_mask & 4) cov = hn::And(cov, hn::Gt(e2, hn::Set(di, st.edge_threshold[s][2])));
       }
-      if (hn::AllFalse(di, cov)) continue;
-      if (!have_bases) compute_bases();
+      if constexpr (kMulti) {
+        // Each sample goes on whether or not any lane is covered: a branch on it is often
+        // mispredicted, and the depth test of an empty mask costs less (4 samples: small 6.5%,
+        // medium 3.4% faster). At one sample the branch measured faster (tiny 7%, grid 11%).
+        if (!have_bases) compute_bases();
+      } else {
+        if (hn::AllFalse(di, cov)) continue;
+        if (!have_bases) compute_bases();
+      }
       if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
       auto pass = hn::RebindMask(df, cov);
       if constexpr (kDepth != DepthMode::kOff) {
@@ -379,7 +386,14 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
           pass = hn::And(pass, depth_passes(df, kMulti ? compare : tc.compare, z, stored));
         }
         if constexpr (kDepth == DepthMode::kTestWrite) {
-          if (!hn::AllFalse(df, pass)) {
+          if constexpr (kMulti && !kOffsets) {
+            // Small triangles' samples are stored unconditionally: whether any lane passes
+            // varies from sample to sample, a branch on it is often mispredicted, and an empty
+            // masked store costs less (4 samples: small 4%, tiny 7% faster). At one sample, and
+            // in the general path's blocks, which Hi-Z has sorted, the branch measured faster.
+            hn::BlendedStore(z, pass, df, plane);
+            wrote |= !hn::AllFalse(df, pass);
+          } else if (!hn::AllFalse(df, pass)) {
             hn::BlendedStore(z, pass, df, plane);
             wrote = true;
           }
