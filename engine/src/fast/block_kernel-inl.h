@@ -359,10 +359,11 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
         if (group_mask & 2) cov = hn::And(cov, hn::Gt(e1, hn::Set(di, st.edge_threshold[s][1])));
         if (group_mask & 4) cov = hn::And(cov, hn::Gt(e2, hn::Set(di, st.edge_threshold[s][2])));
       }
-      if constexpr (kMulti) {
+      if constexpr (kMulti || kOffsets) {
         // Each sample goes on whether or not any lane is covered: a branch on it is often
         // mispredicted, and the depth test of an empty mask costs less (4 samples: small 6.5%,
-        // medium 3.4% faster). At one sample the branch measured faster (tiny 7%, grid 11%).
+        // medium 3.4% faster; one sample, general path: huge 2-4%). For small triangles at one
+        // sample the branch measured faster (tiny 7%, grid 11%).
         if (!have_bases) compute_bases();
       } else {
         if (hn::AllFalse(di, cov)) continue;
