@@ -625,14 +625,14 @@ TEST(FastEngine, RasterCountersOffDrawTheSameImageAndCountNoRasterWork) {
 }
 
 TEST(FastEngine, SubBlocksSkipLaneGroupsOutsideAnEdgeAndTestOnlyTheEdgesCrossingThem) {
-  // Triangles of about 300 px (the general path): a partial block's lane groups are rejected,
+  // Triangles of about 1000 px (the general path): a partial block's lane groups are rejected,
   // accepted or partial by their corner pixels' edge values against the samples' thresholds.
   // Coverage stays the reference's (flat depth per triangle, compare always: every sample's
   // depth names the last triangle covering it). The same blocks are partial at 1 and at 4
   // samples (block tests span a pixel's whole sample area; Hi-Z is off so none is skipped), so
   // the same sub-blocks are tested; 4 samples lie off the pixel centre, so a sub-block wholly
   // inside or outside at 4 samples is so at 1, and some that are at 1 are not at 4.
-  Scene s = soup(760, 3000, 300.0f, true);
+  Scene s = soup(760, 1500, 1000.0f, true);
   Scene multi = s;
   multi.samples = 4;
   const Result ref1 = render(s, Backend::kReference);
@@ -742,18 +742,20 @@ TEST(FastEngine, ClearsTakeEffectWhereverTheFramebufferIsNextUsed) {
 TEST(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
   Scene s;
   // A screen-filling pair of triangles in front, then many triangles behind it, large enough
-  // (over 16 px across) to go through the Hi-Z test rather than the small-triangle path.
+  // (a bounding box over 16 px across) to take a Hi-Z test: ~30 px sides, most through the
+  // small-triangle path, and ~80 px, through the general path.
   const float c[3][4] = {{1, 0, 0, 1}, {1, 0, 0, 1}, {1, 0, 0, 1}};
   const float w[3] = {1, 1, 1}, zf[3] = {0.1f, 0.1f, 0.1f};
   s.add({0, 136, 0}, {0, 0, 72}, zf, w, c);
   s.add({136, 136, 0}, {0, 72, 72}, zf, w, c);
-  const Scene behind = soup(800, 2000, 400.0f, false);
-  for (size_t i = 0; i < behind.positions.size(); ++i) {
-    Float4 p = behind.positions[i];
-    p.z = 0.2f + 0.7f * p.z;  // every depth behind the front quad
-    s.positions.push_back(p);
+  for (const Scene& behind : {soup(800, 2000, 400.0f, false), soup(802, 200, 3000.0f, false)}) {
+    for (size_t i = 0; i < behind.positions.size(); ++i) {
+      Float4 p = behind.positions[i];
+      p.z = 0.2f + 0.7f * p.z;  // every depth behind the front quad
+      s.positions.push_back(p);
+    }
+    s.colors.insert(s.colors.end(), behind.colors.begin(), behind.colors.end());
   }
-  s.colors.insert(s.colors.end(), behind.colors.begin(), behind.colors.end());
   for (DepthFormat format : {DepthFormat::kFloat32, DepthFormat::kUnorm16}) {
     s.depth_format = format;
     const Result ref = render(s, Backend::kReference);

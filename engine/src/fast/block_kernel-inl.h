@@ -780,14 +780,9 @@ HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
   }
 }
 
-// One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
-// counters in; without it the kernel carries no counting code at all.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
-void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
-  if (!t.small) {
-    raster_general<kDepth, kColor, kMulti, kCount>(tc, t, counters);
-    return;
-  }
+// The small-triangle path (RasterTriangle's), with kHiz its Hi-Z test per block.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kHiz>
+HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
   const hn::ScalableTag<int32_t> di;
   const int shift = static_cast<int>(tc.subpixel_bits) - 4;
   constexpr bool kTestDepth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
@@ -798,13 +793,12 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
   const auto lane_e2 = lane_steps(di, st.step_x[2], st.step_y[2]);
   const int32_t bx0 = st.px0 >> 3, by0 = st.py0 >> 3, bx1 = st.px1 >> 3, by1 = st.py1 >> 3;
 
-  // Small triangles (every edge under 16 px across) skip the corner classification and
-  // Hi-Z: for the few blocks they touch, testing every edge costs less. Every sample of
-  // those blocks lies within 32 px of each vertex and |a|, |b| < 2^(bits+4), so
-  // |E| < 2^(2 bits + 10): all three edges step exactly in int32 from block to block. A
-  // block is skipped when an edge is negative at all its samples: its largest value over
-  // the block's pixel centres, plus half a pixel's change in x and y for the sample
-  // offsets (|offset| <= 1/2 px), is below zero.
+  // Small triangles (every edge under 32 px across) skip the corner classification: for the
+  // few blocks they touch, testing every edge costs less. Every sample of those blocks lies
+  // within 40 px of each vertex and |a|, |b| < 2^(bits+5), so |E| < 2^(2 bits + 12): all
+  // three edges step exactly in int32 from block to block. A block is skipped when an edge is
+  // negative at all its samples: its largest value over the block's pixel centres, plus half
+  // a pixel's change in x and y for the sample offsets (|offset| <= 1/2 px), is below zero.
   const int64_t ox = (int64_t{bx0} * 128 + 8) << shift, oy = (int64_t{by0} * 128 + 8) << shift;
   int32_t e_row[3], reach[3];
   for (int e = 0; e < 3; ++e) {
@@ -812,7 +806,21 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
     reach[e] = std::max(st.step_x[e] * 7, 0) + std::max(st.step_y[e] * 7, 0) +
                ((std::abs(st.step_x[e]) + std::abs(st.step_y[e])) >> 1);
   }
-  uint64_t rejected = 0, visited = 0;
+  // Hi-Z (kHiz): the triangle's depth range (its vertices', widened by the margin that covers
+  // the kernel's float rounding, as the general path's) against each block's bounds.
+  float hiz_lo = 0.0f, hiz_hi = 0.0f;
+  if constexpr (kHiz) {
+    const double margin =
+        1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
+    double lo = t.z_min - margin, hi = t.z_max + margin;
+    if (tc.depth_scale > 0.0f) {
+      lo = std::floor(lo * tc.depth_scale);
+      hi = std::ceil(hi * tc.depth_scale);
+    }
+    hiz_lo = static_cast<float>(lo);
+    hiz_hi = static_cast<float>(hi);
+  }
+  uint64_t rejected = 0, visited = 0, hiz_rejected = 0;
   for (int32_t by = by0; by <= by1; ++by) {
     int32_t e_block[3] = {e_row[0], e_row[1], e_row[2]};
     for (int e = 0; e < 3; ++e)
@@ -821,9 +829,18 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       const bool outside =
           (e_block[0] + reach[0] < 0) | (e_block[1] + reach[1] < 0) | (e_block[2] + reach[2] < 0);
       ++visited;
+      bool hidden = false;
+      if (kHiz && !outside) {
+        const size_t block =
+            static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
+        if (hiz_dirty(tc, block)) refresh_hiz(tc, block, st.samples);
+        hidden = hiz_test(tc.compare, hiz_lo, hiz_hi, tc.hiz_min[block], tc.hiz_max[block]) ==
+                 HizVerdict::kReject;
+        hiz_rejected += hidden ? 1 : 0;
+      }
       if (outside) {
         ++rejected;
-      } else {
+      } else if (!hidden) {
         raster_block<kDepth, kColor, kMulti, kCount, false, false>(
             tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block, 7, false, kTestDepth);
       }
@@ -834,9 +851,34 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
   if constexpr (kCount) {
     counters.blocks_rejected += rejected;
     counters.blocks_partial += visited - rejected;
+    if constexpr (kHiz) counters.hiz_rejected += hiz_rejected;
     counters.samples_covered += st.covered;
     counters.samples_passed += st.passed;
     counters.pixels_shaded += st.shaded;
+  }
+}
+
+// raster_small with Hi-Z, out of line: in the inlined small path, even skipped, its test made
+// the smallest triangles 3-4% slower.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
+HWY_NOINLINE void raster_small_hiz(const TileContext& tc, const TriangleSetup& t,
+                                   Counters& counters) {
+  raster_small<kDepth, kColor, kMulti, kCount, true>(tc, t, counters);
+}
+
+// One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
+// counters in; without it the kernel carries no counting code at all. Small triangles whose
+// bounding box spans 16 px or more test Hi-Z per block (below that, recomputing the bounds of
+// blocks written since their last test costs more than the blocks it rejects: `tiny` 1.14x,
+// `small` 1.12x in benchmarks/RESULTS.md).
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
+void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
+  if (!t.small) {
+    raster_general<kDepth, kColor, kMulti, kCount>(tc, t, counters);
+  } else if (tc.hiz && (t.x1 - t.x0 >= 16 || t.y1 - t.y0 >= 16)) {
+    raster_small_hiz<kDepth, kColor, kMulti, kCount>(tc, t, counters);
+  } else {
+    raster_small<kDepth, kColor, kMulti, kCount, false>(tc, t, counters);
   }
 }
 

@@ -173,7 +173,7 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
                   d, hn::Lt(max_step,
                             hn::Set(d, static_cast<double>(narrow_edge_limit(ctx.subpixel_bits))))),
               d, out.narrow + l0);
-    hn::Store(as_double_mask(d, hn::Lt(max_delta, hn::Set(d, 16.0 * scale))), d, out.small + l0);
+    hn::Store(as_double_mask(d, hn::Lt(max_delta, hn::Set(d, 32.0 * scale))), d, out.small + l0);
 
     auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {
       hn::Store(hn::Add(hn::Add(hn::Mul(weight0[0], v0), hn::Mul(weight0[1], v1)),

@@ -104,7 +104,7 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
     wdy[k] = static_cast<double>(dx) * per_pixel;
   }
   t.narrow = max_step < narrow_edge_limit(ctx.subpixel_bits);
-  t.small = max_delta < (int64_t{16} << bits);
+  t.small = max_delta < (int64_t{32} << bits);
 
   auto plane = [&](double v0, double v1, double v2, double& at0, float& gx, float& gy) {
     at0 = weight0[0] * v0 + weight0[1] * v1 + weight0[2] * v2;

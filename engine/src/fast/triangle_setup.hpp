@@ -29,7 +29,7 @@ struct TriangleSetup {
   std::array<int64_t, 3> c;
   int32_t x0, y0, x1, y1;  // pixels whose samples may be inside (inclusive), on screen
   bool narrow;
-  bool small;   // every edge spans under 16 px in x and in y (see block_kernel-inl.h)
+  bool small;   // every edge spans under 32 px in x and in y (see block_kernel-inl.h)
   bool flat_q;  // q is 1 everywhere (affine, or every vertex has the same w): no division
 
   // Planes over pixel coordinates, as value at the centre of pixel (x0, y0) plus gradients per
