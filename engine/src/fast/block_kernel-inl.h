@@ -147,6 +147,22 @@ HizVerdict hiz_test(CompareOp op, float tri_lo, float tri_hi, float block_min, f
   return HizVerdict::kTest;
 }
 
+// The margin around a triangle's depth plane that covers the kernel's float rounding of it.
+inline double hiz_margin(const TriangleSetup& t) {
+  return 1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
+}
+
+// Depth bounds [lo, hi] as Hi-Z compares them with a block's: for fixed-point formats in
+// steps, where a stored step round(z * scale) lies in [floor(lo * scale), ceil(hi * scale)].
+inline void hiz_range(const TileContext& tc, double lo, double hi, float& out_lo, float& out_hi) {
+  if (tc.depth_scale > 0.0f) {
+    lo = std::floor(lo * tc.depth_scale);
+    hi = std::ceil(hi * tc.depth_scale);
+  }
+  out_lo = static_cast<float>(lo);
+  out_hi = static_cast<float>(hi);
+}
+
 // Wide path: exact int64 coverage bits for each pixel of the block (see block_kernel.hpp).
 void wide_coverage(const TriangleSetup& t, const TileContext& tc, int32_t bx, int32_t by,
                    uint32_t* coverage) {
@@ -359,16 +375,14 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
         if (group_mask & 2) cov = hn::And(cov, hn::Gt(e1, hn::Set(di, st.edge_threshold[s][1])));
         if (group_mask & 4) cov = hn::And(cov, hn::Gt(e2, hn::Set(di, st.edge_threshold[s][2])));
       }
-      if constexpr (kMulti || kOffsets) {
-        // Each sample goes on whether or not any lane is covered: a branch on it is often
-        // mispredicted, and the depth test of an empty mask costs less (4 samples: small 6.5%,
-        // medium 3.4% faster; one sample, general path: huge 2-4%). For small triangles at one
-        // sample the branch measured faster (tiny 7%, grid 11%).
-        if (!have_bases) compute_bases();
-      } else {
+      // Multisample and in the general path, each sample goes on whether or not any lane is
+      // covered: a branch on it is often mispredicted, and the depth test of an empty mask
+      // costs less (4 samples: small 6.5%, medium 3.4% faster; one sample, general path: huge
+      // 2-4%). For small triangles at one sample the branch measured faster (tiny 7%, grid 11%).
+      if constexpr (!kMulti && !kOffsets) {
         if (hn::AllFalse(di, cov)) continue;
-        if (!have_bases) compute_bases();
       }
+      if (!have_bases) compute_bases();
       if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
       auto pass = hn::RebindMask(df, cov);
       if constexpr (kDepth != DepthMode::kOff) {
@@ -535,14 +549,9 @@ HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, Trian
         static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
     const bool clipped_block = bx * 8 + 7 > tc.x1 || by * 8 + 7 > tc.y1;
     if (hiz_dirty(tc, block)) refresh_hiz(tc, block, st.samples);
-    double lo_z = std::max(z_corner + bt.z_lo_offset, bt.z_floor);
-    double hi_z = std::min(z_corner + bt.z_hi_offset, bt.z_ceil);
-    if (tc.depth_scale > 0.0f) {
-      // In fixed-point steps: a stored step round(z * scale) lies in these bounds.
-      lo_z = std::floor(lo_z * tc.depth_scale);
-      hi_z = std::ceil(hi_z * tc.depth_scale);
-    }
-    const float lo = static_cast<float>(lo_z), hi = static_cast<float>(hi_z);
+    float lo, hi;
+    hiz_range(tc, std::max(z_corner + bt.z_lo_offset, bt.z_floor),
+              std::min(z_corner + bt.z_hi_offset, bt.z_ceil), lo, hi);
     const HizVerdict verdict = hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]);
     if (verdict == HizVerdict::kReject) {
       if constexpr (kCount) ++counters.hiz_rejected;
@@ -755,7 +764,7 @@ HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
   bt.corner_to_centre = int64_t{8} << shift;
   // Depth over a block's sample area (pixel coordinates relative to the plane origin, the
   // centre of pixel (x0, y0)), widened by a margin that covers the kernel's float rounding.
-  bt.z_margin = 1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
+  bt.z_margin = hiz_margin(t);
   bt.z_lo_offset = std::min(0.0, 8.0 * t.z_dx) + std::min(0.0, 8.0 * t.z_dy) - bt.z_margin;
   bt.z_hi_offset = std::max(0.0, 8.0 * t.z_dx) + std::max(0.0, 8.0 * t.z_dy) + bt.z_margin;
   bt.z_step_bx = 8.0 * t.z_dx;
@@ -810,15 +819,8 @@ HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, Coun
   // the kernel's float rounding, as the general path's) against each block's bounds.
   float hiz_lo = 0.0f, hiz_hi = 0.0f;
   if constexpr (kHiz) {
-    const double margin =
-        1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
-    double lo = t.z_min - margin, hi = t.z_max + margin;
-    if (tc.depth_scale > 0.0f) {
-      lo = std::floor(lo * tc.depth_scale);
-      hi = std::ceil(hi * tc.depth_scale);
-    }
-    hiz_lo = static_cast<float>(lo);
-    hiz_hi = static_cast<float>(hi);
+    const double margin = hiz_margin(t);
+    hiz_range(tc, t.z_min - margin, t.z_max + margin, hiz_lo, hiz_hi);
   }
   uint64_t rejected = 0, visited = 0, hiz_rejected = 0;
   for (int32_t by = by0; by <= by1; ++by) {
