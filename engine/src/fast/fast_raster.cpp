@@ -130,6 +130,14 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.attribute_count = input.attribute_count;
   ctx.pipeline = &pipeline;
   ctx.guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
+  ctx.sample_dx_lo = ctx.sample_dx_hi = pattern[0].dx;
+  ctx.sample_dy_lo = ctx.sample_dy_hi = pattern[0].dy;
+  for (const SampleOffset& o : pattern) {
+    ctx.sample_dx_lo = std::min<int32_t>(ctx.sample_dx_lo, o.dx);
+    ctx.sample_dx_hi = std::max<int32_t>(ctx.sample_dx_hi, o.dx);
+    ctx.sample_dy_lo = std::min<int32_t>(ctx.sample_dy_lo, o.dy);
+    ctx.sample_dy_hi = std::max<int32_t>(ctx.sample_dy_hi, o.dy);
+  }
 
   const uint32_t threads = static_cast<uint32_t>(arena.max_concurrency());
   const uint64_t tiles = grid.tile_count();

@@ -39,7 +39,7 @@ struct Batch {
 
 // Results per lane, written by the vector code and packed into TriangleSetup by scalar code.
 struct Out {
-  alignas(64) double inside[kMaxLanes], keep[kMaxLanes];
+  alignas(64) double inside[kMaxLanes], keep[kMaxLanes], any_sample[kMaxLanes];
   alignas(64) double x0[kMaxLanes], y0[kMaxLanes], x1[kMaxLanes], y1[kMaxLanes];
   alignas(64) double a[3][kMaxLanes], b[3][kMaxLanes], c[3][kMaxLanes];
   alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes];
@@ -128,15 +128,27 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
       }
       area = hn::Abs(area);
     }
-    // Bounding box in pixels (floor division by 2^bits is exact), clamped to the screen.
+    // On screen (culled if not), then the pixels with a sample inside the vertices' bounding
+    // box, clamped to the screen (as triangle_setup.cpp; scaling by 2^-bits is exact).
+    const V lo_x = hn::Min(hn::Min(X[0], X[1]), X[2]), hi_x = hn::Max(hn::Max(X[0], X[1]), X[2]);
+    const V lo_y = hn::Min(hn::Min(Y[0], Y[1]), Y[2]), hi_y = hn::Max(hn::Max(Y[0], Y[1]), Y[2]);
+    keep = hn::And(keep, hn::And(hn::And(hn::Ge(hi_x, zero), hn::Ge(hi_y, zero)),
+                                 hn::And(hn::Lt(lo_x, hn::Set(d, ctx.width * scale)),
+                                         hn::Lt(lo_y, hn::Set(d, ctx.height * scale)))));
     const V inv_scale = hn::Set(d, 1.0 / scale);
-    const V bx0 = hn::Max(hn::Floor(hn::Mul(hn::Min(hn::Min(X[0], X[1]), X[2]), inv_scale)), zero);
-    const V by0 = hn::Max(hn::Floor(hn::Mul(hn::Min(hn::Min(Y[0], Y[1]), Y[2]), inv_scale)), zero);
-    const V bx1 = hn::Min(hn::Floor(hn::Mul(hn::Max(hn::Max(X[0], X[1]), X[2]), inv_scale)),
+    const auto reach = [&](int32_t offset) {  // a sample offset (1/16 px) from the pixel corner
+      return hn::Set(d, static_cast<double>(int64_t{8 + offset} << shift));
+    };
+    const V bx0 =
+        hn::Max(hn::Ceil(hn::Mul(hn::Sub(lo_x, reach(ctx.sample_dx_hi)), inv_scale)), zero);
+    const V by0 =
+        hn::Max(hn::Ceil(hn::Mul(hn::Sub(lo_y, reach(ctx.sample_dy_hi)), inv_scale)), zero);
+    const V bx1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_x, reach(ctx.sample_dx_lo)), inv_scale)),
                           hn::Set(d, ctx.width - 1.0));
-    const V by1 = hn::Min(hn::Floor(hn::Mul(hn::Max(hn::Max(Y[0], Y[1]), Y[2]), inv_scale)),
+    const V by1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_y, reach(ctx.sample_dy_lo)), inv_scale)),
                           hn::Set(d, ctx.height - 1.0));
-    keep = hn::And(keep, hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1)));
+    hn::Store(as_double_mask(d, hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1))), d,
+              out.any_sample + l0);
     hn::Store(as_double_mask(d, inside), d, out.inside + l0);
     hn::Store(as_double_mask(d, keep), d, out.keep + l0);
     hn::Store(bx0, d, out.x0 + l0);
@@ -258,6 +270,7 @@ void SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         continue;
       }
       ++counters.triangles_rasterized;
+      if (out.any_sample[l] == 0.0) continue;  // covers no sample
       TriangleSetup& s = setups.emplace_back();
       for (int k = 0; k < 3; ++k) {
         s.a[k] = static_cast<int32_t>(out.a[k][l]);

@@ -63,24 +63,35 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   }
 
   const int bits = static_cast<int>(ctx.subpixel_bits);
+  const int shift = bits - 4;
   TriangleSetup t;
-  t.x0 = static_cast<int32_t>(std::max<int64_t>(std::min({v[0].x, v[1].x, v[2].x}) >> bits, 0));
-  t.y0 = static_cast<int32_t>(std::max<int64_t>(std::min({v[0].y, v[1].y, v[2].y}) >> bits, 0));
-  t.x1 = static_cast<int32_t>(
-      std::min<int64_t>(std::max({v[0].x, v[1].x, v[2].x}) >> bits, ctx.width - 1));
-  t.y1 = static_cast<int32_t>(
-      std::min<int64_t>(std::max({v[0].y, v[1].y, v[2].y}) >> bits, ctx.height - 1));
-  if (t.x0 > t.x1 || t.y0 > t.y1) {  // inside the guard band but off screen
+  const int64_t lo_x = std::min({v[0].x, v[1].x, v[2].x}),
+                hi_x = std::max({v[0].x, v[1].x, v[2].x});
+  const int64_t lo_y = std::min({v[0].y, v[1].y, v[2].y}),
+                hi_y = std::max({v[0].y, v[1].y, v[2].y});
+  if (hi_x < 0 || hi_y < 0 || lo_x >= int64_t{ctx.width} << bits ||
+      lo_y >= int64_t{ctx.height} << bits) {  // inside the guard band but off screen
     ++counters.triangles_culled;
     return;
   }
   ++counters.triangles_rasterized;
+  // The pixels with a sample between the vertices' smallest and largest coordinates: pixel i's
+  // samples lie at (16 i + 8 + d) << shift for the pattern's offsets d (>> floors; ceil(n / 2^b)
+  // is -floor(-n / 2^b)). None: the triangle covers no sample.
+  t.x0 = static_cast<int32_t>(
+      std::max<int64_t>(-(((int64_t{8 + ctx.sample_dx_hi} << shift) - lo_x) >> bits), 0));
+  t.y0 = static_cast<int32_t>(
+      std::max<int64_t>(-(((int64_t{8 + ctx.sample_dy_hi} << shift) - lo_y) >> bits), 0));
+  t.x1 = static_cast<int32_t>(
+      std::min<int64_t>((hi_x - (int64_t{8 + ctx.sample_dx_lo} << shift)) >> bits, ctx.width - 1));
+  t.y1 = static_cast<int32_t>(
+      std::min<int64_t>((hi_y - (int64_t{8 + ctx.sample_dy_lo} << shift)) >> bits, ctx.height - 1));
+  if (t.x0 > t.x1 || t.y0 > t.y1) return;
 
   // Edge k runs from vertex k+1 to vertex k+2: E(p) = (bx - ax)(py - ay) - (by - ay)(px - ax).
   // Planes: a vertex value v_k spreads as E_k / area (the barycentric of vertex k), so the
   // gradient per fixed-point unit is sum v_k * a_k / area. Values are taken at the centre of
   // pixel (x0, y0) from the exact (unbiased) edge functions.
-  const int shift = bits - 4;
   const int64_t cx = (int64_t{t.x0} * 16 + 8) << shift;
   const int64_t cy = (int64_t{t.y0} * 16 + 8) << shift;
   const double inv_area = 1.0 / static_cast<double>(area);

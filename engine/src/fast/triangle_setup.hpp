@@ -27,7 +27,9 @@ struct TriangleSetup {
   std::array<int32_t, 3> a;
   std::array<int32_t, 3> b;
   std::array<int64_t, 3> c;
-  int32_t x0, y0, x1, y1;  // pixels whose samples may be inside (inclusive), on screen
+  // The pixels with a sample inside the triangle's bounding box (inclusive), on screen: none
+  // outside may be covered.
+  int32_t x0, y0, x1, y1;
   bool narrow;
   bool small;   // every edge spans under 32 px in x and in y (see block_kernel-inl.h)
   bool flat_q;  // q is 1 everywhere (affine, or every vertex has the same w): no division
@@ -54,6 +56,11 @@ struct SetupContext {
   uint32_t attribute_count = 0;
   const PipelineState* pipeline = nullptr;
   GuardBand guard_band;
+  // The samples' offsets from the pixel centre, smallest and largest over the pattern, in 1/16
+  // pixel (sample_positions.hpp): the bounding box keeps only pixels with a sample inside the
+  // triangle's. The defaults hold every pattern.
+  int32_t sample_dx_lo = -8, sample_dx_hi = 8;
+  int32_t sample_dy_lo = -8, sample_dy_hi = 8;
 };
 
 // Sets up one input triangle through the clipper shared with the reference: clip-space
