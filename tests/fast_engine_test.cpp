@@ -232,28 +232,37 @@ TEST(FastEngine, CoverageMatchesReferenceOnPixelCentresAndTileAndBlockBoundaries
   }
 }
 
-TEST(FastEngine, ATriangleBetweenSamplesIsRasterizedWithoutBinning) {
-  // A triangle's bounding box holds only the pixels with a sample inside its vertices' box.
-  // This one lies between four pixel centres: at one sample it covers nothing and is not
-  // binned (still counted as rasterized, not culled); at four samples two samples lie inside,
-  // (10.625, 10.875) of pixel (10, 10) and (11.125, 10.625) of pixel (11, 10), and the
-  // triangle is binned and drawn there.
-  Scene s;
-  const float x[3] = {10.6f, 11.4f, 10.6f}, y[3] = {10.6f, 10.6f, 11.4f}, z[3] = {0.5f, 0.5f, 0.5f},
-              w[3] = {1, 1, 1}, c[3][4] = {};
-  s.add(x, y, z, w, c);
-  for (uint32_t samples : {1u, 4u}) {
-    SCOPED_TRACE(std::to_string(samples) + " samples");
-    s.samples = samples;
-    const Result ref = render(s, Backend::kReference);
-    for_each_config([&](const Config& config) {
-      const Result fast = render(s, Backend::kFast, config);
-      expect_same_coverage(fast, ref, "");
-      EXPECT_EQ(fast.counters.triangles_rasterized, 1u);
-      EXPECT_EQ(fast.counters.triangles_culled, 0u);
-      EXPECT_EQ(fast.counters.bin_references, samples == 1 ? 0u : 1u);
-      EXPECT_EQ(fast.counters.samples_covered, samples == 1 ? 0u : 2u);
-    });
+TEST(FastEngine, TrianglesBetweenSamplesAreRasterizedWithoutBinning) {
+  // A triangle's bounding box holds only the pixels with a sample inside its vertices' box,
+  // and at one sample a box of at most 2x2 pixels is drawn only if a pixel centre is inside.
+  // Neither triangle here covers a pixel centre: at one sample each is counted as rasterized
+  // (not culled) and is not binned. The first lies between four centres (an empty box); the
+  // second's box is pixels (10, 10) and (11, 10), whose centres lie outside it. At four
+  // samples each covers two, (10.625, 10.875) of pixel (10, 10) and (11.125, 10.625) of pixel
+  // (11, 10): both are binned and drawn there.
+  struct Case {
+    float x[3], y[3];
+    uint64_t covered_at_4;
+  };
+  const Case cases[] = {{{10.6f, 11.4f, 10.6f}, {10.6f, 10.6f, 11.4f}, 2},
+                        {{10.4f, 11.0f, 11.6f}, {11.0f, 10.4f, 11.0f}, 2}};
+  for (const Case& t : cases) {
+    Scene s;
+    const float z[3] = {0.5f, 0.5f, 0.5f}, w[3] = {1, 1, 1}, c[3][4] = {};
+    s.add(t.x, t.y, z, w, c);
+    for (uint32_t samples : {1u, 4u}) {
+      SCOPED_TRACE(std::to_string(t.x[0]) + ", " + std::to_string(samples) + " samples");
+      s.samples = samples;
+      const Result ref = render(s, Backend::kReference);
+      EXPECT_EQ(ref.counters.samples_covered, samples == 1 ? 0u : t.covered_at_4);
+      for_each_config([&](const Config& config) {
+        const Result fast = render(s, Backend::kFast, config);
+        expect_same_coverage(fast, ref, "");
+        EXPECT_EQ(fast.counters.triangles_rasterized, 1u);
+        EXPECT_EQ(fast.counters.triangles_culled, 0u);
+        EXPECT_EQ(fast.counters.bin_references, samples == 1 ? 0u : 1u);
+      });
+    }
   }
 }
 

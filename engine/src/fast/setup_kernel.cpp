@@ -147,8 +147,7 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
                           hn::Set(d, ctx.width - 1.0));
     const V by1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_y, reach(ctx.sample_dy_lo)), inv_scale)),
                           hn::Set(d, ctx.height - 1.0));
-    hn::Store(as_double_mask(d, hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1))), d,
-              out.any_sample + l0);
+    auto any_sample = hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1));
     hn::Store(as_double_mask(d, inside), d, out.inside + l0);
     hn::Store(as_double_mask(d, keep), d, out.keep + l0);
     hn::Store(bx0, d, out.x0 + l0);
@@ -165,6 +164,13 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
     const V per_pixel = hn::Mul(hn::Set(d, scale), inv_area);
     V weight0[3], wdx[3], wdy[3];
     V max_step = zero, max_delta = zero;
+    // One sample per pixel and a bounding box of at most 2x2 pixels: whether a pixel centre
+    // of the box is inside, from the edge functions there (exact in double: below 2^51).
+    // If none is, the triangle covers nothing and is not binned.
+    const bool centre_only = ctx.centre_sample_only();
+    const V box_dx = hn::Min(hn::Sub(bx1, bx0), hn::Set(d, 1.0));  // 0 or 1 in a small box
+    const V box_dy = hn::Min(hn::Sub(by1, by0), hn::Set(d, 1.0));
+    auto in00 = hn::Eq(zero, zero), in10 = in00, in01 = in00, in11 = in00;
     for (int k = 0; k < 3; ++k) {
       const int from = (k + 1) % 3, to = (k + 2) % 3;
       const V dx = hn::Sub(X[to], X[from]), dy = hn::Sub(Y[to], Y[from]);
@@ -172,8 +178,18 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
       const V bias = hn::IfThenElseZero(hn::Not(top_left), hn::Set(d, 1.0));
       hn::Store(hn::Neg(dy), d, out.a[k] + l0);
       hn::Store(dx, d, out.b[k] + l0);
-      hn::Store(hn::Sub(hn::Sub(hn::Mul(dy, X[from]), hn::Mul(dx, Y[from])), bias), d,
-                out.c[k] + l0);
+      const V c = hn::Sub(hn::Sub(hn::Mul(dy, X[from]), hn::Mul(dx, Y[from])), bias);
+      hn::Store(c, d, out.c[k] + l0);
+      if (centre_only) {
+        const V e00 = hn::Add(hn::Sub(c, hn::Mul(dy, cx)), hn::Mul(dx, cy));
+        const V e10 = hn::Sub(e00, hn::Mul(hn::Mul(dy, hn::Set(d, scale)), box_dx));
+        const V e01 = hn::Add(e00, hn::Mul(hn::Mul(dx, hn::Set(d, scale)), box_dy));
+        const V e11 = hn::Add(e10, hn::Sub(e01, e00));
+        in00 = hn::And(in00, hn::Ge(e00, zero));
+        in10 = hn::And(in10, hn::Ge(e10, zero));
+        in01 = hn::And(in01, hn::Ge(e01, zero));
+        in11 = hn::And(in11, hn::Ge(e11, zero));
+      }
       max_step = hn::Max(max_step, hn::Add(hn::Abs(dy), hn::Abs(dx)));
       max_delta = hn::Max(max_delta, hn::Max(hn::Abs(dy), hn::Abs(dx)));
       weight0[k] = hn::Mul(
@@ -186,6 +202,13 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
                             hn::Set(d, static_cast<double>(narrow_edge_limit(ctx.subpixel_bits))))),
               d, out.narrow + l0);
     hn::Store(as_double_mask(d, hn::Lt(max_delta, hn::Set(d, 32.0 * scale))), d, out.small + l0);
+    if (centre_only) {
+      const auto small_box = hn::And(hn::Le(hn::Sub(bx1, bx0), hn::Set(d, 1.0)),
+                                     hn::Le(hn::Sub(by1, by0), hn::Set(d, 1.0)));
+      const auto covered = hn::Or(hn::Or(in00, in10), hn::Or(in01, in11));
+      any_sample = hn::And(any_sample, hn::Or(hn::Not(small_box), covered));
+    }
+    hn::Store(as_double_mask(d, any_sample), d, out.any_sample + l0);
 
     auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {
       hn::Store(hn::Add(hn::Add(hn::Mul(weight0[0], v0), hn::Mul(weight0[1], v1)),

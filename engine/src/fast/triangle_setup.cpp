@@ -86,7 +86,7 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
       std::min<int64_t>((hi_x - (int64_t{8 + ctx.sample_dx_lo} << shift)) >> bits, ctx.width - 1));
   t.y1 = static_cast<int32_t>(
       std::min<int64_t>((hi_y - (int64_t{8 + ctx.sample_dy_lo} << shift)) >> bits, ctx.height - 1));
-  if (t.x0 > t.x1 || t.y0 > t.y1) return;
+  if (t.x0 > t.x1 || t.y0 > t.y1) return;  // not drawn, but not culled either
 
   // Edge k runs from vertex k+1 to vertex k+2: E(p) = (bx - ax)(py - ay) - (by - ay)(px - ax).
   // Planes: a vertex value v_k spreads as E_k / area (the barycentric of vertex k), so the
@@ -113,6 +113,20 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
     weight0[k] = static_cast<double>(dx * (cy - from.y) - dy * (cx - from.x)) * inv_area;
     wdx[k] = static_cast<double>(-dy) * per_pixel;
     wdy[k] = static_cast<double>(dx) * per_pixel;
+  }
+  if (ctx.centre_sample_only() && t.x1 - t.x0 <= 1 && t.y1 - t.y0 <= 1) {
+    // One sample per pixel and at most 2x2 pixels: drawn only if a pixel centre is inside.
+    bool covered = false;
+    for (int32_t py = t.y0; py <= t.y1; ++py) {
+      for (int32_t px = t.x0; px <= t.x1; ++px) {
+        const int64_t sx = (int64_t{px} * 16 + 8) << shift, sy = (int64_t{py} * 16 + 8) << shift;
+        bool inside = true;
+        for (int k = 0; k < 3; ++k)
+          inside &= t.a[k] * sx + t.b[k] * sy + t.c[k] >= 0;
+        covered |= inside;
+      }
+    }
+    if (!covered) return;
   }
   t.narrow = max_step < narrow_edge_limit(ctx.subpixel_bits);
   t.small = max_delta < (int64_t{32} << bits);

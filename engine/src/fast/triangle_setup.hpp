@@ -61,6 +61,11 @@ struct SetupContext {
   // triangle's. The defaults hold every pattern.
   int32_t sample_dx_lo = -8, sample_dx_hi = 8;
   int32_t sample_dy_lo = -8, sample_dy_hi = 8;
+
+  // One sample per pixel, at its centre.
+  bool centre_sample_only() const {
+    return sample_dx_lo == 0 && sample_dx_hi == 0 && sample_dy_lo == 0 && sample_dy_hi == 0;
+  }
 };
 
 // Sets up one input triangle through the clipper shared with the reference: clip-space
