@@ -31,10 +31,11 @@ namespace {
 
 constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
 
-// Lane arrays for one batch: [vertex][lane] and [vertex][channel][lane].
+// One batch's vertices as given (positions, and colours with missing channels filled in),
+// [vertex][lane]: copied whole from the draw, deinterleaved and widened by the vector code.
 struct Batch {
-  alignas(64) double x[3][kMaxLanes], y[3][kMaxLanes], z[3][kMaxLanes], w[3][kMaxLanes];
-  alignas(64) double color[3][4][kMaxLanes];
+  alignas(64) Float4 position[3][kMaxLanes];
+  alignas(64) float color[3][kMaxLanes][4];  // r, g, b, a
 };
 
 // Results per lane, written by the vector code and packed into TriangleSetup by scalar code.
@@ -64,9 +65,11 @@ HWY_INLINE hn::Vec<D> as_double_mask(D d, M m) {
 
 void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
   const hn::ScalableTag<double> d;
+  const hn::Rebind<float, decltype(d)> df;  // the input floats, as many lanes
   using V = hn::Vec<decltype(d)>;
   const size_t n = hn::Lanes(d);
   const PipelineState& p = *ctx.pipeline;
+  const bool gl_depth = p.clip_depth == ClipDepth::kNegativeOneToOne;
   const int bits = static_cast<int>(ctx.subpixel_bits);
   const int shift = bits - 4;
   const double scale = static_cast<double>(1u << bits);
@@ -76,8 +79,12 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
     V X[3], Y[3], Z[3], IW[3];
     auto inside = hn::Eq(zero, zero);
     for (int k = 0; k < 3; ++k) {
-      const V x = hn::Load(d, in.x[k] + l0), y = hn::Load(d, in.y[k] + l0);
-      const V z = hn::Load(d, in.z[k] + l0), w = hn::Load(d, in.w[k] + l0);
+      hn::Vec<decltype(df)> px, py, pz, pw;
+      hn::LoadInterleaved4(df, &in.position[k][l0].x, px, py, pz, pw);
+      const V x = hn::PromoteTo(d, px), y = hn::PromoteTo(d, py), w = hn::PromoteTo(d, pw);
+      // OpenGL's -w <= z <= w becomes 0 <= z <= w: z' = (z + w) / 2 (as setup_triangle).
+      const V z = gl_depth ? hn::Mul(hn::Set(d, 0.5), hn::Add(hn::PromoteTo(d, pz), w))
+                           : hn::PromoteTo(d, pz);
       // The clip distances of clip.cpp, term for term.
       const V gx = hn::Mul(hn::Set(d, ctx.guard_band.x), w);
       const V gy = hn::Mul(hn::Set(d, ctx.guard_band.y), w);
@@ -108,8 +115,12 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
     // Orient clockwise on screen: swap vertices 1 and 2 where the area is negative.
     V C[3][4];
     for (int k = 0; k < 3; ++k) {
-      for (int c = 0; c < 4; ++c)
-        C[k][c] = hn::Load(d, in.color[k][c] + l0);
+      hn::Vec<decltype(df)> r, g, b, a;
+      hn::LoadInterleaved4(df, &in.color[k][l0][0], r, g, b, a);
+      C[k][0] = hn::PromoteTo(d, r);
+      C[k][1] = hn::PromoteTo(d, g);
+      C[k][2] = hn::PromoteTo(d, b);
+      C[k][3] = hn::PromoteTo(d, a);
     }
     {
       const V x1 = X[1], y1 = Y[1], z1 = Z[1], w1 = IW[1];
@@ -247,7 +258,6 @@ void SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
   const hn::ScalableTag<double> d;
   const size_t lanes = std::min(hn::Lanes(d), kMaxLanes);
   const bool indexed = !input.indices.empty();
-  const bool gl_depth = ctx.pipeline->clip_depth == ClipDepth::kNegativeOneToOne;
   const uint32_t count = input.attribute_count;
   Batch batch;
   Out out;
@@ -257,19 +267,14 @@ void SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
       const size_t tri = t + std::min(l, used - 1);  // spare lanes repeat the last triangle
       for (int k = 0; k < 3; ++k) {
         const size_t vertex = indexed ? input.indices[tri * 3 + k] : tri * 3 + k;
-        const Float4& p = input.positions[vertex];
-        batch.x[k][l] = p.x;
-        batch.y[k][l] = p.y;
-        batch.w[k][l] = p.w;
-        batch.z[k][l] = gl_depth ? 0.5 * (double{p.z} + p.w) : p.z;
+        batch.position[k][l] = input.positions[vertex];
         const float* a = count ? &input.attributes[vertex * count] : nullptr;
         if (count >= 4) {  // the usual case: every channel given, no per-channel choice
-          for (int c = 0; c < 4; ++c)
-            batch.color[k][c][l] = a[c];
+          std::memcpy(batch.color[k][l], a, sizeof(batch.color[k][l]));
         } else {
-          for (int c = 0; c < 4; ++c) {
-            batch.color[k][c][l] = c < static_cast<int>(count) ? a[c] : (c == 3 ? 1.0 : 0.0);
-          }
+          float* c = batch.color[k][l];
+          for (uint32_t i = 0; i < 4; ++i)
+            c[i] = i < count ? a[i] : (i == 3 ? 1.0f : 0.0f);
         }
       }
     }
