@@ -229,6 +229,56 @@ INSTANTIATE_TEST_SUITE_P(Backends, DrawValidation,
                                                                  : std::string("Fast");
                          });
 
+TEST(DrawValidationOfLargeDraws, ScansInPiecesOnTheRenderersThreadsAndStillNamesTheCulprit) {
+  // 300,000 vertices: the finiteness and index scans run in pieces on the renderer's threads.
+  // Each bad value, far into its array, is still found and named, nothing is drawn, and the
+  // same draw without it is accepted.
+  constexpr uint32_t kVertices = 300000;
+  std::vector<Float4> positions(kVertices);
+  for (uint32_t v = 0; v < kVertices; ++v) {
+    const float x = static_cast<float>(v % 1000) / 500.0f - 1.0f;
+    positions[v] = {x + (v % 3 == 1 ? 0.002f : 0.0f), (v % 3 == 2 ? 0.002f : 0.0f), 0.5f, 1.0f};
+  }
+  std::vector<float> attributes(size_t{kVertices} * 4, 0.5f);
+  std::vector<uint32_t> indices(kVertices);
+  for (uint32_t i = 0; i < kVertices; ++i)
+    indices[i] = kVertices - 1 - i;
+  for (uint32_t threads : {1u, 2u}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    Renderer renderer(RendererOptions{threads, Backend::kFast});
+    Framebuffer fb({64, 64, 1, ColorFormat::kRGBA8});
+    fb.clear_color({0.2f, 0.4f, 0.6f, 1.0f});
+    const std::vector<uint8_t> before = fb.read_rgba8();
+    const auto expect_rejected = [&](const DrawInput& input,
+                                     std::initializer_list<std::string> parts) {
+      try {
+        renderer.draw(fb, {}, input);
+        ADD_FAILURE() << "expected tessera::Error";
+      } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kInvalidInput);
+        for (const std::string& part : parts) {
+          EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
+              << "'" << part << "' not in: " << e.what();
+        }
+      }
+      EXPECT_EQ(fb.read_rgba8(), before);
+      EXPECT_EQ(renderer.counters().triangles_submitted, 0u);
+    };
+    std::vector<Float4> bad_positions = positions;
+    bad_positions[250001].w = kNaN;
+    expect_rejected({bad_positions, attributes, 4, {}}, {"vertex 250001", "not finite"});
+    std::vector<float> bad_attributes = attributes;
+    bad_attributes[size_t{299999} * 4 + 3] = kInf;
+    expect_rejected({positions, bad_attributes, 4, {}}, {"attribute 3", "vertex 299999"});
+    std::vector<uint32_t> bad_indices = indices;
+    bad_indices[280000] = kVertices;
+    expect_rejected({positions, attributes, 4, bad_indices},
+                    {"index 300000", "position 280000", "300000 vertices"});
+    renderer.draw(fb, {}, {positions, attributes, 4, indices});
+    EXPECT_EQ(renderer.counters().triangles_submitted, kVertices / 3);
+  }
+}
+
 // Validation rejects only what cannot be drawn: any finite clip-space position is valid input,
 // clipped like any other whatever its magnitude or the sign of w, drawn without an error and
 // without undefined behaviour (the sanitizer build checks that), and never leaves a depth

@@ -9,6 +9,10 @@
 #include <sstream>
 #include <string>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
+
 #include "tessera/error.hpp"
 
 namespace tessera {
@@ -38,24 +42,57 @@ uint32_t non_finite(float value) {
   return (std::bit_cast<uint32_t>(value) & 0x7f800000u) == 0x7f800000u ? 1u : 0u;
 }
 
-bool all_finite(std::span<const float> values) {
-  uint32_t found = 0;
-  for (const float value : values)
-    found |= non_finite(value);
-  return found == 0;
+// `scan` (begin, end) -> uint32_t over [0, n), its results combined by `|` or max (`combine`):
+// in pieces on the arena's threads when there is one and n is large (a scan of a million-triangle
+// draw's vertices takes a few milliseconds on one core), else in one piece.
+template <typename Scan, typename Combine>
+uint32_t reduce(tbb::task_arena* arena, size_t n, Scan scan, Combine combine) {
+  constexpr size_t kPiece = size_t{1} << 16;
+  if (arena == nullptr || n < 4 * kPiece) return scan(size_t{0}, n);
+  return arena->execute([&] {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, n, kPiece), uint32_t{0},
+        [&](const tbb::blocked_range<size_t>& r, uint32_t found) {
+          return combine(found, scan(r.begin(), r.end()));
+        },
+        combine);
+  });
 }
 
-bool all_finite(std::span<const Float4> positions) {
-  uint32_t found = 0;
-  for (const Float4& p : positions)
-    found |= non_finite(p.x) | non_finite(p.y) | non_finite(p.z) | non_finite(p.w);
-  return found == 0;
+uint32_t either(uint32_t a, uint32_t b) {
+  return a | b;
+}
+
+bool all_finite(std::span<const float> values, tbb::task_arena* arena = nullptr) {
+  return reduce(
+             arena, values.size(),
+             [&](size_t begin, size_t end) {
+               uint32_t found = 0;
+               for (size_t i = begin; i < end; ++i)
+                 found |= non_finite(values[i]);
+               return found;
+             },
+             either) == 0;
+}
+
+bool all_finite(std::span<const Float4> positions, tbb::task_arena* arena = nullptr) {
+  return reduce(
+             arena, positions.size(),
+             [&](size_t begin, size_t end) {
+               uint32_t found = 0;
+               for (size_t i = begin; i < end; ++i) {
+                 const Float4& p = positions[i];
+                 found |= non_finite(p.x) | non_finite(p.y) | non_finite(p.z) | non_finite(p.w);
+               }
+               return found;
+             },
+             either) == 0;
 }
 
 }  // namespace
 
 void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
-                       const DrawInput& input, bool finite_values) {
+                       const DrawInput& input, bool finite_values, tbb::task_arena* arena) {
   check_enum(pipeline.depth_compare, CompareOp::kAlways, "depth_compare");
   check_enum(pipeline.cull, CullMode::kBack, "cull");
   check_enum(pipeline.front_face, FrontFace::kClockwise, "front_face");
@@ -86,9 +123,15 @@ void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
   }
   if (!input.indices.empty()) {
     // A branch-free maximum first (it vectorizes); the slow search only names the bad index.
-    uint32_t largest = 0;
-    for (const uint32_t index : input.indices)
-      largest = std::max(largest, index);
+    const uint32_t largest = reduce(
+        arena, input.indices.size(),
+        [&](size_t begin, size_t end) {
+          uint32_t most = 0;
+          for (size_t i = begin; i < end; ++i)
+            most = std::max(most, input.indices[i]);
+          return most;
+        },
+        [](uint32_t a, uint32_t b) { return std::max(a, b); });
     for (size_t i = 0; largest >= vertices && i < input.indices.size(); ++i) {
       if (input.indices[i] >= vertices) {
         fail(ErrorCode::kInvalidInput,
@@ -100,7 +143,7 @@ void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
   if (!finite_values) return;
   // Branch-free scans first (they vectorize); the loops that name the culprit run only when
   // something is not finite.
-  const bool positions_finite = all_finite(input.positions);
+  const bool positions_finite = all_finite(input.positions, arena);
   for (size_t v = 0; !positions_finite && v < vertices; ++v) {
     const Float4& p = input.positions[v];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.w)) {
@@ -108,7 +151,7 @@ void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
            "position of vertex " + std::to_string(v) + " is not finite: " + describe(p));
     }
   }
-  const bool attributes_finite = all_finite(input.attributes);
+  const bool attributes_finite = all_finite(input.attributes, arena);
   for (size_t i = 0; !attributes_finite && i < input.attributes.size(); ++i) {
     if (!std::isfinite(input.attributes[i])) {
       fail(ErrorCode::kInvalidInput, "attribute " + std::to_string(i % input.attribute_count) +
@@ -132,7 +175,7 @@ std::vector<bool> finite_vertices(const DrawInput& input) {
 }
 
 void validate_draw(const Framebuffer& target, const PipelineState& pipeline, const DrawInput& input,
-                   bool finite_values) {
+                   bool finite_values, tbb::task_arena* arena) {
   if (input.indices.empty()) {
     if (input.positions.size() % 3 != 0) {
       fail(ErrorCode::kInvalidInput,
@@ -143,7 +186,7 @@ void validate_draw(const Framebuffer& target, const PipelineState& pipeline, con
     fail(ErrorCode::kInvalidInput, "a triangle list needs a multiple of 3 indices, got " +
                                        std::to_string(input.indices.size()));
   }
-  validate_vertices(target, pipeline, input, finite_values);
+  validate_vertices(target, pipeline, input, finite_values, arena);
 }
 
 namespace {

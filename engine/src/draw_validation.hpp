@@ -6,6 +6,8 @@
 #include <span>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
 #include "tessera/framebuffer.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/primitives.hpp"
@@ -17,15 +19,17 @@ namespace tessera {
 // framebuffer, Error(kInvalidInput) for inconsistent sizes, an index out of range, or a
 // position or attribute that is NaN or infinite.
 // With finite_values false, NaN and infinite values pass (NonFiniteVertices::kCull drops
-// their triangles after).
+// their triangles after). With an arena, the scans of large vertex and index arrays run on its
+// threads.
 void validate_draw(const Framebuffer& target, const PipelineState& pipeline, const DrawInput& input,
-                   bool finite_values = true);
+                   bool finite_values = true, tbb::task_arena* arena = nullptr);
 
 // What validate_draw checks except the triangle list's vertex count: the pipeline state,
 // attribute sizes, index range and (with finite_values) finite values. Used by every kind of
 // draw.
 void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
-                       const DrawInput& input, bool finite_values = true);
+                       const DrawInput& input, bool finite_values = true,
+                       tbb::task_arena* arena = nullptr);
 
 // Per vertex, whether its position and attributes are all finite; empty when every vertex is.
 std::vector<bool> finite_vertices(const DrawInput& input);

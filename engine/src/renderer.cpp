@@ -90,7 +90,7 @@ void Renderer::reset_counters() noexcept {
 
 void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input) {
   const bool cull_non_finite = impl_->options.non_finite == NonFiniteVertices::kCull;
-  validate_draw(target, pipeline, input, !cull_non_finite);
+  validate_draw(target, pipeline, input, !cull_non_finite, &impl_->arena);
   // Pending clears are left to the fast engine's tiles (draw_triangles writes them for the
   // reference).
   detail::FramebufferStorage& storage = detail::FramebufferAccess::deferred_storage(target);
