@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <initializer_list>
 #include <limits>
@@ -277,6 +278,84 @@ TEST(DrawValidationOfLargeDraws, ScansInPiecesOnTheRenderersThreadsAndStillNames
     renderer.draw(fb, {}, {positions, attributes, 4, indices});
     EXPECT_EQ(renderer.counters().triangles_submitted, kVertices / 3);
   }
+}
+
+// The fast engine checks a triangle soup's positions and colours as its setup reads them, not
+// in a scan of their own first. A NaN or infinity anywhere, in any chunk of the draw, in a pass
+// after the first (a small bin budget), or in an attribute setup does not read (more than four
+// attributes: checked before drawing), gives the reference backend's error word for word, and
+// nothing is drawn or counted.
+TEST(DrawValidationOfLargeDraws, SoupsCheckedDuringSetupFailAsTheReferenceDoesBeforeDrawing) {
+  constexpr uint32_t kVertices = 300000;
+  std::vector<Float4> positions(kVertices);
+  for (uint32_t v = 0; v < kVertices; ++v) {
+    const float x = static_cast<float>(v % 1000) / 500.0f - 1.0f;
+    positions[v] = {x + (v % 3 == 1 ? 0.02f : 0.0f), (v % 3 == 2 ? 0.02f : 0.0f), 0.5f, 1.0f};
+  }
+  struct Case {
+    const char* name;
+    uint32_t attribute_count;
+    uint32_t bad_position;  // kVertices: none
+    size_t bad_attribute;   // index into the attributes; SIZE_MAX: none
+  };
+  constexpr size_t kNone = SIZE_MAX;
+  const Case cases[] = {
+      {"first position", 4, 0, kNone},
+      {"position in a middle chunk", 4, 150001, kNone},
+      {"last position", 4, kVertices - 1, kNone},
+      {"last colour", 4, kVertices, size_t{kVertices - 2} * 4 + 1},
+      {"position after a colour", 4, 200000, size_t{100000} * 4},
+      {"three attributes", 3, kVertices, size_t{250000} * 3 + 2},
+      {"sixth attribute", 6, kVertices, size_t{123456} * 6 + 5},
+  };
+  // The reference backend's message for each case, which validates everything before drawing.
+  const auto message = [&](Backend backend, uint32_t threads, uint64_t budget, const Case& k,
+                           Framebuffer& fb) {
+    RendererOptions options{threads, backend};
+    options.bin_memory_budget = budget;
+    Renderer renderer(options);
+    std::vector<Float4> p = positions;
+    std::vector<float> a(size_t{kVertices} * k.attribute_count, 0.5f);
+    if (k.bad_position < kVertices) p[k.bad_position].y = kNaN;
+    if (k.bad_attribute != kNone) a[k.bad_attribute] = -kInf;
+    std::string what;
+    try {
+      renderer.draw(fb, {}, {p, a, k.attribute_count, {}});
+      ADD_FAILURE() << "expected tessera::Error";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::kInvalidInput);
+      what = e.what();
+    }
+    EXPECT_EQ(renderer.counters().triangles_submitted, 0u);
+    EXPECT_EQ(renderer.counters().bin_references, 0u);
+    return what;
+  };
+  for (const Case& k : cases) {
+    Framebuffer reference_fb({64, 64, 1, ColorFormat::kRGBA8});
+    const std::string expected =
+        message(Backend::kReference, 1, kDefaultBinMemoryBudget, k, reference_fb);
+    EXPECT_NE(expected.find("not finite"), std::string::npos) << expected;
+    for (uint32_t threads : {1u, 2u, 3u}) {
+      for (uint64_t budget : {kDefaultBinMemoryBudget, uint64_t{1} << 20}) {
+        SCOPED_TRACE(std::string(k.name) + ", " + std::to_string(threads) + " threads, budget " +
+                     std::to_string(budget));
+        Framebuffer fb({64, 64, 1, ColorFormat::kRGBA8});
+        fb.clear_color({0.2f, 0.4f, 0.6f, 1.0f});
+        const std::vector<uint8_t> before = fb.read_rgba8();
+        EXPECT_EQ(message(Backend::kFast, threads, budget, k, fb), expected);
+        EXPECT_EQ(fb.read_rgba8(), before);
+      }
+    }
+  }
+  // The same soup without a bad value is drawn, under the small budget in several passes.
+  RendererOptions options{2, Backend::kFast};
+  options.bin_memory_budget = uint64_t{1} << 20;
+  Renderer renderer(options);
+  Framebuffer fb({64, 64, 1, ColorFormat::kRGBA8});
+  const std::vector<float> attributes(size_t{kVertices} * 4, 0.5f);
+  renderer.draw(fb, {}, {positions, attributes, 4, {}});
+  EXPECT_EQ(renderer.counters().triangles_submitted, kVertices / 3);
+  EXPECT_GT(renderer.counters().bin_passes, 1u);
 }
 
 // Validation rejects only what cannot be drawn: any finite clip-space position is valid input,

@@ -140,11 +140,14 @@ void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
       }
     }
   }
-  if (!finite_values) return;
+  if (finite_values) check_finite_values(input, arena);
+}
+
+void check_finite_values(const DrawInput& input, tbb::task_arena* arena) {
   // Branch-free scans first (they vectorize); the loops that name the culprit run only when
   // something is not finite.
   const bool positions_finite = all_finite(input.positions, arena);
-  for (size_t v = 0; !positions_finite && v < vertices; ++v) {
+  for (size_t v = 0; !positions_finite && v < input.positions.size(); ++v) {
     const Float4& p = input.positions[v];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.w)) {
       fail(ErrorCode::kInvalidInput,

@@ -31,6 +31,10 @@ void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
                        const DrawInput& input, bool finite_values = true,
                        tbb::task_arena* arena = nullptr);
 
+// Throws Error(kInvalidInput) naming the first vertex whose position, then the first whose
+// attribute, is NaN or infinite (validate_vertices's finite-value check).
+void check_finite_values(const DrawInput& input, tbb::task_arena* arena = nullptr);
+
 // Per vertex, whether its position and attributes are all finite; empty when every vertex is.
 std::vector<bool> finite_vertices(const DrawInput& input);
 

@@ -90,12 +90,19 @@ void Renderer::reset_counters() noexcept {
 
 void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input) {
   const bool cull_non_finite = impl_->options.non_finite == NonFiniteVertices::kCull;
-  validate_draw(target, pipeline, input, !cull_non_finite, &impl_->arena);
+  // The fast engine's setup checks a triangle soup's positions and colours for NaN and
+  // infinity as it reads them (in cache) rather than in a pass of their own over the arrays
+  // first, and throws the same error before drawing anything. Indexed draws are checked here
+  // (every vertex must be finite, also those no index uses), and so are draws with more
+  // attributes than the four colour channels setup reads.
+  const bool check_in_setup = !cull_non_finite && impl_->options.backend == Backend::kFast &&
+                              input.indices.empty() && input.attribute_count <= 4;
+  validate_draw(target, pipeline, input, !cull_non_finite && !check_in_setup, &impl_->arena);
   // Pending clears are left to the fast engine's tiles (draw_triangles writes them for the
   // reference).
   detail::FramebufferStorage& storage = detail::FramebufferAccess::deferred_storage(target);
   if (!cull_non_finite) {
-    draw_triangles(storage, pipeline, input);
+    draw_triangles(storage, pipeline, input, check_in_setup);
     return;
   }
   const std::vector<bool> finite = finite_vertices(input);
@@ -124,14 +131,14 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
 }
 
 void Renderer::draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,
-                              const DrawInput& input) {
+                              const DrawInput& input, bool check_finite) {
   if (impl_->options.backend == Backend::kReference) {
     storage.write_all_pending();
     // The reference writes depth without maintaining the fast engine's Hi-Z bounds.
     if (pipeline.depth_test && pipeline.depth_write) storage.hiz_valid = false;
     reference::draw(storage, pipeline, input, impl_->counters);
   } else {
-    impl_->fast.draw(impl_->arena, storage, pipeline, input, impl_->counters);
+    impl_->fast.draw(impl_->arena, storage, pipeline, input, impl_->counters, check_finite);
   }
 }
 

@@ -157,7 +157,7 @@ class Renderer {
  private:
   struct Impl;
   void draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,
-                      const DrawInput& input);
+                      const DrawInput& input, bool check_finite = false);
   std::unique_ptr<Impl> impl_;
 };
 

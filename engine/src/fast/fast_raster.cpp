@@ -16,11 +16,13 @@
 #include <tbb/parallel_for.h>
 
 #include "binning/bins.hpp"
+#include "engine/src/draw_validation.hpp"
 #include "engine/src/fast/block_kernel.hpp"
 #include "engine/src/fast/setup_kernel.hpp"
 #include "engine/src/fast/tile_raster.hpp"
 #include "engine/src/fast/triangle_setup.hpp"
 #include "engine/src/sample_positions.hpp"
+#include "tessera/error.hpp"
 
 namespace tessera::fast {
 
@@ -35,6 +37,7 @@ struct Chunk {
   Counters counters;
   size_t begin = 0, end = 0;  // triangles of the draw given to this chunk
   size_t stopped_at = 0;      // first triangle not binned (== end when all were)
+  bool non_finite = false;    // setup read a NaN or infinite position or colour
 };
 
 // Marks every block's Hi-Z bounds out of date (the kernels recompute a block's when they need
@@ -85,8 +88,8 @@ int64_t FastRasterizer::simd_target() const noexcept {
 }
 
 void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb,
-                          const PipelineState& pipeline, const DrawInput& input,
-                          Counters& counters) {
+                          const PipelineState& pipeline, const DrawInput& input, Counters& counters,
+                          bool check_finite) {
   State& st = *state_;
   const bool indexed = !input.indices.empty();
   const size_t triangles = (indexed ? input.indices.size() : input.positions.size()) / 3;
@@ -130,6 +133,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.attribute_count = input.attribute_count;
   ctx.pipeline = &pipeline;
   ctx.guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
+  ctx.check_finite = check_finite;
   ctx.sample_dx_lo = ctx.sample_dx_hi = pattern[0].dx;
   ctx.sample_dy_lo = ctx.sample_dy_hi = pattern[0].dy;
   for (const SampleOffset& o : pattern) {
@@ -199,6 +203,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
         chunk.bins.reset(grid.tile_count(), grid.tiles_x);
         chunk.counters = {};
         chunk.stopped_at = chunk.end;
+        chunk.non_finite = false;
         // Bytes the chunk holds with `setups` setups of capacity and `references` references.
         const auto held = [&](uint64_t setups, uint64_t references) {
           return setups * kTriangleBytes +
@@ -233,7 +238,12 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
           const size_t batch_end = std::min(chunk.end, t + batch);
           const size_t first = chunk.setups.size();
           const Counters before = chunk.counters;
-          st.setup(ctx, input, t, batch_end, chunk.setups, chunk.counters);
+          if (!st.setup(ctx, input, t, batch_end, chunk.setups, chunk.counters)) {
+            // A NaN or infinity (ctx.check_finite): the draw stops with validation's error.
+            chunk.non_finite = true;
+            chunk.stopped_at = t;
+            break;
+          }
           uint64_t references = 0;
           for (size_t i = first; i < chunk.setups.size(); ++i) {
             const TriangleSetup& s = chunk.setups[i];
@@ -279,6 +289,21 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     while (used < chunk_count && st.chunks[used].stopped_at == st.chunks[used].end)
       ++used;
     const size_t last = std::min(used, chunk_count - 1);
+    if (check_finite) {
+      // A NaN or infinity met in setup, or more passes to come whose vertices this pass did
+      // not read: the whole draw's values are checked (throwing validation's error) before
+      // this pass draws anything.
+      bool non_finite = false;
+      for (size_t c = 0; c < chunk_count; ++c)
+        non_finite |= st.chunks[c].non_finite;
+      if (non_finite || st.chunks[last].stopped_at < triangles) {
+        check_finite_values(input, &arena);
+        if (non_finite) {
+          throw Error(ErrorCode::kInvalidInput, "a vertex value is not finite");
+        }
+      }
+      check_finite = false;
+    }
     const size_t kept = last + 1;
     std::vector<ChunkView> views(kept);
     uint64_t kept_setups = 0, kept_references = 0;

@@ -24,9 +24,13 @@ class FastRasterizer {
 
   int64_t simd_target() const noexcept;
 
-  // Draws a validated draw call (see draw_validation.hpp) inside `arena`.
+  // Draws a validated draw call (see draw_validation.hpp) inside `arena`. With check_finite,
+  // a non-indexed draw whose finite values were not validated: each piece's vertices are
+  // checked as it is set up, and a NaN or infinity anywhere throws validation's error
+  // (check_finite_values) before anything is drawn or counted.
   void draw(tbb::task_arena& arena, detail::FramebufferStorage& target,
-            const PipelineState& pipeline, const DrawInput& input, Counters& counters);
+            const PipelineState& pipeline, const DrawInput& input, Counters& counters,
+            bool check_finite = false);
 
  private:
   struct State;

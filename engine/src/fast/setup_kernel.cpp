@@ -253,7 +253,32 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
 
 }  // namespace
 
-void SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, size_t end,
+// Whether the batch's first `lanes` lanes of positions and colours are all finite (no value
+// with every exponent bit set: NaN or infinity).
+HWY_INLINE bool batch_finite(const Batch& batch, size_t lanes) {
+  const hn::ScalableTag<uint32_t> du;
+  const size_t n = hn::Lanes(du);
+  const auto exponent = hn::Set(du, 0x7f800000u);
+  auto found = hn::Zero(du);
+  bool tail = false;
+  const auto scan = [&](const float* values, size_t count) {
+    const auto* bits = reinterpret_cast<const uint32_t*>(values);
+    size_t i = 0;
+    for (; i + n <= count; i += n) {
+      found = hn::Or(
+          found, hn::VecFromMask(du, hn::Eq(hn::And(hn::LoadU(du, bits + i), exponent), exponent)));
+    }
+    for (; i < count; ++i)  // vectors wider than kMaxLanes doubles only
+      tail |= (bits[i] & 0x7f800000u) == 0x7f800000u;
+  };
+  for (int k = 0; k < 3; ++k) {
+    scan(&batch.position[k][0].x, lanes * 4);
+    scan(&batch.color[k][0][0], lanes * 4);
+  }
+  return !tail && hn::AllTrue(du, hn::Eq(found, hn::Zero(du)));
+}
+
+bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, size_t end,
                 SetupList& setups, Counters& counters) {
   const hn::ScalableTag<double> d;
   const size_t lanes = std::min(hn::Lanes(d), kMaxLanes);
@@ -278,6 +303,7 @@ void SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         }
       }
     }
+    if (ctx.check_finite && !batch_finite(batch, lanes)) return false;
     SetupBatchLanes(ctx, batch, lanes, out);
     for (size_t l = 0; l < used; ++l) {
       if (out.inside[l] == 0.0) {
@@ -327,6 +353,7 @@ void SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
       }
     }
   }
+  return true;
 }
 
 }  // namespace tessera::fast::HWY_NAMESPACE

@@ -12,8 +12,10 @@ namespace tessera::fast {
 
 // Sets up triangles [begin, end) of a validated draw, in order, appending their setups exactly
 // as triangle_setup.cpp's scalar setup of the snapped vertices does (same bits); triangles
-// a clip plane cuts go through setup_triangle.
-using SetupRangeFn = void (*)(const SetupContext& context, const DrawInput& input, size_t begin,
+// a clip plane cuts go through setup_triangle. With context.check_finite, returns false
+// (having stopped somewhere in the range) when a position or colour it reads is NaN or
+// infinite; otherwise true.
+using SetupRangeFn = bool (*)(const SetupContext& context, const DrawInput& input, size_t begin,
                               size_t end, SetupList& out, Counters& counters);
 
 // The setup kernel compiled for a Highway target bit; targets without one (sizeless-vector

@@ -61,6 +61,9 @@ struct SetupContext {
   // triangle's. The defaults hold every pattern.
   int32_t sample_dx_lo = -8, sample_dx_hi = 8;
   int32_t sample_dy_lo = -8, sample_dy_hi = 8;
+  // The draw's positions and colours were not checked for NaN and infinity: the vectorized
+  // setup checks each batch it reads (setup_kernel.hpp).
+  bool check_finite = false;
 
   // One sample per pixel, at its centre.
   bool centre_sample_only() const {
