@@ -4,8 +4,8 @@
 // scene/bin design, with one bin set per setup worker).
 //
 // The lists live in one flat array, built in two steps (a counting sort): while triangles are
-// set up, each one's tile rectangle is recorded and the tiles' reference counts grow; then
-// place() lays the references out tile by tile into an array of exactly their number. The
+// set up, each one's tile rectangle is recorded; then place() counts each tile's references
+// and lays them out tile by tile into an array of exactly their number. The
 // memory a bin set holds is therefore known (bytes()) and its user can keep it within a budget.
 #pragma once
 
@@ -50,14 +50,22 @@ class Bins {
   // Records the next triangle (index = the number recorded before it).
   void record(TileRect r) {
     rects_.push_back(r);
-    for (uint32_t ty = r.y0; ty <= r.y1; ++ty) {
-      for (uint32_t tx = r.x0; tx <= r.x1; ++tx)
-        ++counts_[ty * tiles_x_ + tx];
-    }
     references_ += r.count();
+  }
+  // Forgets the triangles recorded after the first `triangles`.
+  void truncate(size_t triangles) {
+    for (size_t i = triangles; i < rects_.size(); ++i)
+      references_ -= rects_[i].count();
+    rects_.resize(triangles);
   }
   // Lays the recorded triangles' references out, tile by tile, in recording order.
   void place() {
+    for (const TileRect& r : rects_) {
+      for (uint32_t ty = r.y0; ty <= r.y1; ++ty) {
+        for (uint32_t tx = r.x0; tx <= r.x1; ++tx)
+          ++counts_[ty * tiles_x_ + tx];
+      }
+    }
     uint32_t start = 0;
     for (size_t t = 0; t < counts_.size(); ++t) {
       starts_[t] = start;

@@ -244,21 +244,21 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
             chunk.stopped_at = t;
             break;
           }
-          uint64_t references = 0;
           for (size_t i = first; i < chunk.setups.size(); ++i) {
             const TriangleSetup& s = chunk.setups[i];
-            references += ((static_cast<uint32_t>(s.x1) >> grid.size_log2) -
-                           (static_cast<uint32_t>(s.x0) >> grid.size_log2) + 1) *
-                          uint64_t{(static_cast<uint32_t>(s.y1) >> grid.size_log2) -
-                                   (static_cast<uint32_t>(s.y0) >> grid.size_log2) + 1};
+            chunk.bins.record(
+                {static_cast<uint16_t>(static_cast<uint32_t>(s.x0) >> grid.size_log2),
+                 static_cast<uint16_t>(static_cast<uint32_t>(s.y0) >> grid.size_log2),
+                 static_cast<uint16_t>(static_cast<uint32_t>(s.x1) >> grid.size_log2),
+                 static_cast<uint16_t>(static_cast<uint32_t>(s.y1) >> grid.size_log2)});
           }
-          const bool fits =
-              chunk.setups.size() <= setup_capacity &&
-              chunk.bins.references() + references <= reference_capacity &&
-              held(chunk.setups.capacity(), chunk.bins.references() + references) <= chunk_budget;
+          const bool fits = chunk.setups.size() <= setup_capacity &&
+                            chunk.bins.references() <= reference_capacity &&
+                            held(chunk.setups.capacity(), chunk.bins.references()) <= chunk_budget;
           if (!fits && (first > 0 || batch > 1)) {
             // Undo the batch; retry smaller, or end the chunk's part of this pass here.
             chunk.setups.resize(first);
+            chunk.bins.truncate(first);
             chunk.counters = before;
             if (first > 0) {
               chunk.stopped_at = t;
@@ -269,14 +269,6 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
           }
           // (A single triangle that does not fit an empty chunk is binned anyway: every pass
           // makes progress; the budget is then exceeded by that one triangle.)
-          for (size_t i = first; i < chunk.setups.size(); ++i) {
-            const TriangleSetup& s = chunk.setups[i];
-            chunk.bins.record(
-                {static_cast<uint16_t>(static_cast<uint32_t>(s.x0) >> grid.size_log2),
-                 static_cast<uint16_t>(static_cast<uint32_t>(s.y0) >> grid.size_log2),
-                 static_cast<uint16_t>(static_cast<uint32_t>(s.x1) >> grid.size_log2),
-                 static_cast<uint16_t>(static_cast<uint32_t>(s.y1) >> grid.size_log2)});
-          }
           t = batch_end;
         }
         chunk.bins.place();
