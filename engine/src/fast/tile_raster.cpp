@@ -63,9 +63,11 @@ void raster_tile(const TileContext& draw, TriangleKernel kernel, detail::Framebu
       for (const ChunkView& chunk : chunks) {
         const std::span<const uint32_t> list = chunk.bins->tile(tile);
         for (size_t n = 0; n < list.size(); ++n) {
-          // Setups were written long before this tile reads them: fetch a few ahead.
-          if (n + 4 < list.size()) {
-            const char* ahead = reinterpret_cast<const char*>(&chunk.setups[list[n + 4]]);
+          // Setups were written long before this tile reads them: fetch a few ahead (6
+          // measured 2% faster than 4 on `tiny`, the same elsewhere; 2 and 12 slower).
+          constexpr size_t kAhead = 6;
+          if (n + kAhead < list.size()) {
+            const char* ahead = reinterpret_cast<const char*>(&chunk.setups[list[n + kAhead]]);
             for (size_t line = 0; line < sizeof(TriangleSetup); line += 64) {
               __builtin_prefetch(ahead + line);
             }
