@@ -230,16 +230,22 @@ INSTANTIATE_TEST_SUITE_P(Backends, DrawValidation,
                                                                  : std::string("Fast");
                          });
 
+// A soup of `count` vertices: thin triangles `size` across in clip space, in rows over x.
+std::vector<Float4> soup_positions(uint32_t count, float size) {
+  std::vector<Float4> positions(count);
+  for (uint32_t v = 0; v < count; ++v) {
+    const float x = static_cast<float>(v % 1000) / 500.0f - 1.0f;
+    positions[v] = {x + (v % 3 == 1 ? size : 0.0f), (v % 3 == 2 ? size : 0.0f), 0.5f, 1.0f};
+  }
+  return positions;
+}
+
 TEST(DrawValidationOfLargeDraws, ScansInPiecesOnTheRenderersThreadsAndStillNamesTheCulprit) {
   // 300,000 vertices: the finiteness and index scans run in pieces on the renderer's threads.
   // Each bad value, far into its array, is still found and named, nothing is drawn, and the
   // same draw without it is accepted.
   constexpr uint32_t kVertices = 300000;
-  std::vector<Float4> positions(kVertices);
-  for (uint32_t v = 0; v < kVertices; ++v) {
-    const float x = static_cast<float>(v % 1000) / 500.0f - 1.0f;
-    positions[v] = {x + (v % 3 == 1 ? 0.002f : 0.0f), (v % 3 == 2 ? 0.002f : 0.0f), 0.5f, 1.0f};
-  }
+  const std::vector<Float4> positions = soup_positions(kVertices, 0.002f);
   std::vector<float> attributes(size_t{kVertices} * 4, 0.5f);
   std::vector<uint32_t> indices(kVertices);
   for (uint32_t i = 0; i < kVertices; ++i)
@@ -287,11 +293,7 @@ TEST(DrawValidationOfLargeDraws, ScansInPiecesOnTheRenderersThreadsAndStillNames
 // nothing is drawn or counted.
 TEST(DrawValidationOfLargeDraws, SoupsCheckedDuringSetupFailAsTheReferenceDoesBeforeDrawing) {
   constexpr uint32_t kVertices = 300000;
-  std::vector<Float4> positions(kVertices);
-  for (uint32_t v = 0; v < kVertices; ++v) {
-    const float x = static_cast<float>(v % 1000) / 500.0f - 1.0f;
-    positions[v] = {x + (v % 3 == 1 ? 0.02f : 0.0f), (v % 3 == 2 ? 0.02f : 0.0f), 0.5f, 1.0f};
-  }
+  const std::vector<Float4> positions = soup_positions(kVertices, 0.02f);
   struct Case {
     const char* name;
     uint32_t attribute_count;
