@@ -256,20 +256,20 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
 // Whether the batch's first `lanes` lanes of positions and colours are all finite (no value
 // with every exponent bit set: NaN or infinity).
 HWY_INLINE bool batch_finite(const Batch& batch, size_t lanes) {
-  const hn::ScalableTag<uint32_t> du;
-  const size_t n = hn::Lanes(du);
+  const hn::ScalableTag<float> df;
+  const hn::RebindToUnsigned<decltype(df)> du;
+  const size_t n = hn::Lanes(df);
   const auto exponent = hn::Set(du, 0x7f800000u);
   auto found = hn::Zero(du);
   bool tail = false;
   const auto scan = [&](const float* values, size_t count) {
-    const auto* bits = reinterpret_cast<const uint32_t*>(values);
     size_t i = 0;
     for (; i + n <= count; i += n) {
-      found = hn::Or(
-          found, hn::VecFromMask(du, hn::Eq(hn::And(hn::LoadU(du, bits + i), exponent), exponent)));
+      const auto bits = hn::BitCast(du, hn::LoadU(df, values + i));
+      found = hn::Or(found, hn::VecFromMask(du, hn::Eq(hn::And(bits, exponent), exponent)));
     }
     for (; i < count; ++i)  // vectors wider than kMaxLanes doubles only
-      tail |= (bits[i] & 0x7f800000u) == 0x7f800000u;
+      tail |= !std::isfinite(values[i]);
   };
   for (int k = 0; k < 3; ++k) {
     scan(&batch.position[k][0].x, lanes * 4);
