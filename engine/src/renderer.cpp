@@ -90,13 +90,12 @@ void Renderer::reset_counters() noexcept {
 
 void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input) {
   const bool cull_non_finite = impl_->options.non_finite == NonFiniteVertices::kCull;
-  // The fast engine's setup checks a triangle soup's positions and colours for NaN and
-  // infinity as it reads them (in cache) rather than in a pass of their own over the arrays
-  // first, and throws the same error before drawing anything. Indexed draws are checked here
-  // (every vertex must be finite, also those no index uses), and so are draws with more
-  // attributes than the four colour channels setup reads.
+  // The fast engine's setup checks the draws it can (triangle soups with at most four
+  // attributes) for NaN and infinity as it reads them, in cache, rather than in a pass of their
+  // own over the arrays first, and throws the same error before drawing anything. The others
+  // are checked here: an indexed draw's vertices must all be finite, also those no index uses.
   const bool check_in_setup = !cull_non_finite && impl_->options.backend == Backend::kFast &&
-                              input.indices.empty() && input.attribute_count <= 4;
+                              fast::FastRasterizer::checks_finite_values(input);
   validate_draw(target, pipeline, input, !cull_non_finite && !check_in_setup, &impl_->arena);
   // Pending clears are left to the fast engine's tiles (draw_triangles writes them for the
   // reference).

@@ -24,10 +24,17 @@ class FastRasterizer {
 
   int64_t simd_target() const noexcept;
 
+  // Whether draw() can check `input`'s values for NaN and infinity itself (check_finite): a
+  // triangle soup (every vertex is drawn) whose attributes are at most the four colour
+  // channels the setup reads.
+  static bool checks_finite_values(const DrawInput& input) {
+    return input.indices.empty() && input.attribute_count <= 4;
+  }
+
   // Draws a validated draw call (see draw_validation.hpp) inside `arena`. With check_finite,
-  // a non-indexed draw whose finite values were not validated: each piece's vertices are
-  // checked as it is set up, and a NaN or infinity anywhere throws validation's error
-  // (check_finite_values) before anything is drawn or counted.
+  // a draw checks_finite_values() accepts whose finite values were not validated: each
+  // piece's vertices are checked as it is set up, and a NaN or infinity anywhere throws
+  // validation's error (check_finite_values) before anything is drawn or counted.
   void draw(tbb::task_arena& arena, detail::FramebufferStorage& target,
             const PipelineState& pipeline, const DrawInput& input, Counters& counters,
             bool check_finite = false);

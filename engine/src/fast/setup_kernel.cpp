@@ -253,29 +253,18 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
 
 }  // namespace
 
-// Whether the batch's first `lanes` lanes of positions and colours are all finite (no value
-// with every exponent bit set: NaN or infinity).
+// Whether the batch's first `lanes` lanes of positions and colours are all finite. Each
+// vertex's lanes hold 4 * lanes floats, two float vectors (lanes = Lanes(double)).
 HWY_INLINE bool batch_finite(const Batch& batch, size_t lanes) {
   const hn::ScalableTag<float> df;
-  const hn::RebindToUnsigned<decltype(df)> du;
-  const size_t n = hn::Lanes(df);
-  const auto exponent = hn::Set(du, 0x7f800000u);
-  auto found = hn::Zero(du);
-  bool tail = false;
-  const auto scan = [&](const float* values, size_t count) {
-    size_t i = 0;
-    for (; i + n <= count; i += n) {
-      const auto bits = hn::BitCast(du, hn::LoadU(df, values + i));
-      found = hn::Or(found, hn::VecFromMask(du, hn::Eq(hn::And(bits, exponent), exponent)));
-    }
-    for (; i < count; ++i)  // vectors wider than kMaxLanes doubles only
-      tail |= !std::isfinite(values[i]);
-  };
+  auto finite = hn::FirstN(df, hn::Lanes(df));
   for (int k = 0; k < 3; ++k) {
-    scan(&batch.position[k][0].x, lanes * 4);
-    scan(&batch.color[k][0][0], lanes * 4);
+    for (size_t i = 0; i < lanes * 4; i += hn::Lanes(df)) {
+      finite = hn::And(finite, hn::IsFinite(hn::LoadU(df, &batch.position[k][0].x + i)));
+      finite = hn::And(finite, hn::IsFinite(hn::LoadU(df, &batch.color[k][0][0] + i)));
+    }
   }
-  return !tail && hn::AllTrue(du, hn::Eq(found, hn::Zero(du)));
+  return hn::AllTrue(df, finite);
 }
 
 bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, size_t end,
