@@ -18,12 +18,14 @@
 // corner in the same order on every target, and contraction is off, so every target writes the
 // same bytes.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
 #include "binning/tile_grid.hpp"
 #include "engine/src/fast/block_kernel.hpp"
 #include "engine/src/framebuffer_storage.hpp"
+#include "engine/src/sample_positions.hpp"
 
 // Per-target include guard: defined and undefined in turn as foreach_target.h toggles
 // HWY_TARGET_TOGGLE, so each target's pass reads the code below once.
@@ -880,6 +882,88 @@ HWY_NOINLINE void raster_small_hiz(const TileContext& tc, const TriangleSetup& t
   raster_small<kDepth, kColor, kMulti, kCount, true>(tc, t, counters);
 }
 
+// One sample per pixel, and a triangle whose setup found which of its at most 2x2 pixel centres
+// are inside (TriangleSetup::centres): those of them in this tile are drawn one by one, with no
+// edge to test and no lane to fill. Each value is the float sum raster_block forms for that
+// pixel's lane (plane bases at the block's first pixel, then the offset to the pixel, in the
+// same order), clamped, rounded and compared as its lanes are, so the bytes are the same.
+template <DepthMode kDepth, ColorMode kColor, bool kCount>
+HWY_INLINE void raster_centres(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
+  uint32_t covered = 0, passed = 0, blocks = 0;  // blocks: bit (by - by0) * 2 + (bx - bx0)
+  for (uint32_t bits = t.centres; bits != 0; bits &= bits - 1) {
+    const uint32_t bit = static_cast<uint32_t>(std::countr_zero(bits));
+    const int32_t x = t.x0 + static_cast<int32_t>(bit & 1),
+                  y = t.y0 + static_cast<int32_t>(bit >> 1);
+    if (x < tc.x0 || x > tc.x1 || y < tc.y0 || y > tc.y1) continue;  // another tile's
+    const int32_t bx = x >> 3, by = y >> 3;
+    const size_t block =
+        static_cast<size_t>(((y - tc.tile_y0) >> 3) * kBlocksPerTileSide + ((x - tc.tile_x0) >> 3));
+    const size_t index = block * 64 + static_cast<size_t>((y & 7) * 8 + (x & 7));
+    const float fx = static_cast<float>(x & 7), fy = static_cast<float>(y & 7);
+    const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;  // as compute_bases
+    if constexpr (kCount) {
+      ++covered;
+      blocks |= 1u << (((by - (t.y0 >> 3)) << 1) + (bx - (t.x0 >> 3)));
+    }
+    if constexpr (kDepth != DepthMode::kOff) {
+      const float z_base = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
+      float z = z_base + (fx * t.z_dx + fy * t.z_dy);
+      z = z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;  // hn::Min(hn::Max(z, 0), 1)
+      if (tc.depth_scale > 0.0f) z = std::nearbyint(z * tc.depth_scale);
+      float& stored = tc.depth[index];
+      if (!detail::depth_passes(tc.compare, z, stored)) continue;
+      if constexpr (kDepth == DepthMode::kTestWrite) {
+        stored = z;
+        mark_hiz_dirty(tc, block);
+      }
+    }
+    if constexpr (kCount) ++passed;
+    if constexpr (kColor != ColorMode::kOff) {
+      const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
+      float channel[4];
+      for (int c = 0; c < 4; ++c) {
+        const float base = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
+        channel[c] = base + (fx * t.qa_dx[c] + fy * t.qa_dy[c]);
+      }
+      if (!t.flat_q) {
+        const float q_base = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
+        const float q = q_base + (fx * t.q_dx + fy * t.q_dy);
+        if (q > 0.0f) {
+          const float inv_q = 1.0f / q;
+          for (float& v : channel)
+            v *= inv_q;
+        } else {
+          // Beyond the horizon: raster_block divides at the pixel's (only) sample, its centre.
+          for (float& v : channel)
+            v /= q;
+        }
+      }
+      if constexpr (kColor == ColorMode::kRGBA8) {
+        reinterpret_cast<uint32_t*>(tc.rgba8)[index] =
+            uint32_t{tessera::to_unorm8(channel[0])} |
+            uint32_t{tessera::to_unorm8(channel[1])} << 8 |
+            uint32_t{tessera::to_unorm8(channel[2])} << 16 |
+            uint32_t{tessera::to_unorm8(channel[3])} << 24;
+      } else {
+        std::copy(channel, channel + 4, tc.rgba32f + index * 4);
+      }
+    }
+  }
+  if constexpr (kCount) {
+    // The blocks of the box in this tile: those with a covered pixel partial, the others
+    // rejected (as the small path counts blocks its edges miss).
+    const int32_t bx0 = std::max(t.x0, tc.x0) >> 3, bx1 = std::min(t.x1, tc.x1) >> 3;
+    const int32_t by0 = std::max(t.y0, tc.y0) >> 3, by1 = std::min(t.y1, tc.y1) >> 3;
+    const uint32_t partial = static_cast<uint32_t>(std::popcount(blocks));
+    counters.blocks_partial += partial;
+    counters.blocks_rejected +=
+        static_cast<uint32_t>(std::max(bx1 - bx0 + 1, 0) * std::max(by1 - by0 + 1, 0)) - partial;
+    counters.samples_covered += covered;
+    counters.samples_passed += passed;
+    counters.pixels_shaded += kColor != ColorMode::kOff ? passed : 0;
+  }
+}
+
 // One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
 // counters in; without it the kernel carries no counting code at all. Small triangles whose
 // bounding box spans 16 px or more test Hi-Z per block (below that, recomputing the bounds of
@@ -887,7 +971,9 @@ HWY_NOINLINE void raster_small_hiz(const TileContext& tc, const TriangleSetup& t
 // `small` 1.12x in benchmarks/RESULTS.md).
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
 void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
-  if (!t.small) {
+  if (!kMulti && t.centres != 0) {
+    raster_centres<kDepth, kColor, kCount>(tc, t, counters);
+  } else if (!t.small) {
     raster_general<kDepth, kColor, kMulti, kCount>(tc, t, counters);
   } else if (tc.hiz && (t.x1 - t.x0 >= 16 || t.y1 - t.y0 >= 16)) {
     raster_small_hiz<kDepth, kColor, kMulti, kCount>(tc, t, counters);

@@ -43,7 +43,7 @@ struct Out {
   alignas(64) double inside[kMaxLanes], keep[kMaxLanes], any_sample[kMaxLanes];
   alignas(64) double x0[kMaxLanes], y0[kMaxLanes], x1[kMaxLanes], y1[kMaxLanes];
   alignas(64) double a[3][kMaxLanes], b[3][kMaxLanes], c[3][kMaxLanes];
-  alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes];
+  alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes], centres[kMaxLanes];
   alignas(64) double z0[kMaxLanes], z_dx[kMaxLanes], z_dy[kMaxLanes], z_min[kMaxLanes],
       z_max[kMaxLanes];
   alignas(64) double q0[kMaxLanes], q_dx[kMaxLanes], q_dy[kMaxLanes];
@@ -213,12 +213,23 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
                             hn::Set(d, static_cast<double>(narrow_edge_limit(ctx.subpixel_bits))))),
               d, out.narrow + l0);
     hn::Store(as_double_mask(d, hn::Lt(max_delta, hn::Set(d, 32.0 * scale))), d, out.small + l0);
+    V centres = zero;  // TriangleSetup::centres
     if (centre_only) {
       const auto small_box = hn::And(hn::Le(hn::Sub(bx1, bx0), hn::Set(d, 1.0)),
                                      hn::Le(hn::Sub(by1, by0), hn::Set(d, 1.0)));
       const auto covered = hn::Or(hn::Or(in00, in10), hn::Or(in01, in11));
       any_sample = hn::And(any_sample, hn::Or(hn::Not(small_box), covered));
+      // In a box one pixel wide or high, the second column's or row's values repeat the first's.
+      const auto two_x = hn::Gt(box_dx, zero), two_y = hn::Gt(box_dy, zero);
+      const auto bit = [&](auto m, double value) {
+        return hn::IfThenElseZero(m, hn::Set(d, value));
+      };
+      centres = hn::Add(
+          hn::Add(bit(in00, 1.0), bit(hn::And(in10, two_x), 2.0)),
+          hn::Add(bit(hn::And(in01, two_y), 4.0), bit(hn::And(in11, hn::And(two_x, two_y)), 8.0)));
+      centres = hn::IfThenElseZero(small_box, centres);
     }
+    hn::Store(centres, d, out.centres + l0);
     hn::Store(as_double_mask(d, any_sample), d, out.any_sample + l0);
 
     auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {
@@ -327,6 +338,7 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
       s.narrow = out.narrow[l] != 0.0;
       s.small = out.small[l] != 0.0;
       s.flat_q = out.flat_q[l] != 0.0;
+      s.centres = static_cast<uint8_t>(out.centres[l]);
       s.z0 = out.z0[l];
       s.z_dx = static_cast<float>(out.z_dx[l]);
       s.z_dy = static_cast<float>(out.z_dy[l]);

@@ -115,18 +115,18 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
     wdy[k] = static_cast<double>(dx) * per_pixel;
   }
   if (ctx.centre_sample_only() && t.x1 - t.x0 <= 1 && t.y1 - t.y0 <= 1) {
-    // One sample per pixel and at most 2x2 pixels: drawn only if a pixel centre is inside.
-    bool covered = false;
+    // One sample per pixel and at most 2x2 pixels: drawn only if a pixel centre is inside,
+    // and the kernel is told which.
     for (int32_t py = t.y0; py <= t.y1; ++py) {
       for (int32_t px = t.x0; px <= t.x1; ++px) {
         const int64_t sx = (int64_t{px} * 16 + 8) << shift, sy = (int64_t{py} * 16 + 8) << shift;
         bool inside = true;
         for (int k = 0; k < 3; ++k)
           inside &= t.a[k] * sx + t.b[k] * sy + t.c[k] >= 0;
-        covered |= inside;
+        if (inside) t.centres |= static_cast<uint8_t>(1u << ((py - t.y0) * 2 + (px - t.x0)));
       }
     }
-    if (!covered) return;
+    if (t.centres == 0) return;
   }
   t.narrow = max_step < narrow_edge_limit(ctx.subpixel_bits);
   t.small = max_delta < (int64_t{32} << bits);
