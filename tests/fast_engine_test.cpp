@@ -266,6 +266,59 @@ TEST(FastEngine, TrianglesBetweenSamplesAreRasterizedWithoutBinning) {
   }
 }
 
+TEST(FastEngine, TinyTrianglesMatchReferenceInEveryDrawState) {
+  // Triangles of about 1.5 pixels at one sample: most have a box of at most 2x2 pixels, whose
+  // covered pixel centres the setup finds and the kernel draws one by one (TriangleSetup::
+  // centres). Each triangle has its own constant depth, increasing with submission, so every
+  // depth decision is exact: under kGreater each sample keeps the last triangle covering it.
+  struct State {
+    const char* name;
+    bool depth_test, depth_write;
+    ColorFormat format;
+    DepthFormat depth_format;
+    Interpolation interpolation;
+  };
+  const State states[] = {
+      {"test+write", true, true, ColorFormat::kRGBA8, DepthFormat::kFloat32,
+       Interpolation::kPerspective},
+      {"test only", true, false, ColorFormat::kRGBA8, DepthFormat::kFloat32,
+       Interpolation::kPerspective},
+      {"no depth", false, false, ColorFormat::kRGBA8, DepthFormat::kFloat32,
+       Interpolation::kPerspective},
+      {"float colour", true, true, ColorFormat::kRGBA32F, DepthFormat::kFloat32,
+       Interpolation::kPerspective},
+      {"affine", true, true, ColorFormat::kRGBA8, DepthFormat::kFloat32, Interpolation::kAffine},
+      {"unorm16", true, true, ColorFormat::kRGBA8, DepthFormat::kUnorm16,
+       Interpolation::kPerspective},
+      {"unorm24", true, true, ColorFormat::kRGBA8, DepthFormat::kUnorm24,
+       Interpolation::kPerspective},
+  };
+  for (const State& state : states) {
+    SCOPED_TRACE(state.name);
+    Scene s = soup(650, 6000, 1.5f, true, true);
+    s.format = state.format;
+    s.depth_format = state.depth_format;
+    s.pipeline.depth_test = state.depth_test;
+    s.pipeline.depth_write = state.depth_write;
+    // Test only: the cleared far plane stays, and every covered sample passes kLess.
+    s.pipeline.depth_compare = state.depth_write ? CompareOp::kGreater : CompareOp::kLess;
+    s.pipeline.interpolation = state.interpolation;
+    const Result ref = render(s, Backend::kReference);
+    ASSERT_GT(ref.counters.samples_covered, 5000u);
+    for_each_config([&](const Config& config) {
+      const Result fast = render(s, Backend::kFast, config);
+      expect_same_coverage(fast, ref, state.name);
+      EXPECT_EQ(fast.counters.samples_passed, ref.counters.samples_passed);
+      for (size_t i = 0; i < ref.rgba8.size(); ++i) {
+        ASSERT_LE(std::abs(int{fast.rgba8[i]} - int{ref.rgba8[i]}), 1) << "byte " << i;
+      }
+      for (size_t i = 0; i < ref.rgba32f.size(); ++i) {
+        ASSERT_NEAR(fast.rgba32f[i], ref.rgba32f[i], 1.0f / 255.0f) << "value " << i;
+      }
+    });
+  }
+}
+
 TEST(FastEngine, CoverageMatchesReferenceOnLongSlivers) {
   Scene s;
   std::mt19937 rng(8);
