@@ -224,9 +224,9 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
       const auto bit = [&](auto m, double value) {
         return hn::IfThenElseZero(m, hn::Set(d, value));
       };
-      centres = hn::Add(
-          hn::Add(bit(in00, 1.0), bit(hn::And(in10, two_x), 2.0)),
-          hn::Add(bit(hn::And(in01, two_y), 4.0), bit(hn::And(in11, hn::And(two_x, two_y)), 8.0)));
+      centres = hn::Add(hn::Add(bit(in00, 1.0), bit(hn::And(in10, two_x), 2.0)),
+                        hn::Add(bit(hn::And(in01, two_y), 16.0),
+                                bit(hn::And(in11, hn::And(two_x, two_y)), 32.0)));
       centres = hn::IfThenElseZero(small_box, centres);
     }
     hn::Store(centres, d, out.centres + l0);

@@ -123,7 +123,7 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
         bool inside = true;
         for (int k = 0; k < 3; ++k)
           inside &= t.a[k] * sx + t.b[k] * sy + t.c[k] >= 0;
-        if (inside) t.centres |= static_cast<uint8_t>(1u << ((py - t.y0) * 2 + (px - t.x0)));
+        if (inside) t.centres |= static_cast<uint8_t>(1u << ((py - t.y0) * 4 + (px - t.x0)));
       }
     }
     if (t.centres == 0) return;

@@ -34,7 +34,7 @@ struct TriangleSetup {
   bool small;   // every edge spans under 32 px in x and in y (see block_kernel-inl.h)
   bool flat_q;  // q is 1 everywhere (affine, or every vertex has the same w): no division
   // One sample per pixel and a bounding box of at most 2x2 pixels: which of its pixel centres
-  // are inside, bit (y - y0) * 2 + (x - x0), from exact edge functions. 0 when not known (any
+  // are inside, bit (y - y0) * 4 + (x - x0), from exact edge functions. 0 when not known (any
   // other triangle): the kernel then tests the edges itself.
   uint8_t centres = 0;
 
