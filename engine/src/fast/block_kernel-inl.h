@@ -404,11 +404,12 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
           pass = hn::And(pass, depth_passes(df, kMulti ? compare : tc.compare, z, stored));
         }
         if constexpr (kDepth == DepthMode::kTestWrite) {
-          if constexpr (kMulti && !kOffsets) {
+          if constexpr (!kOffsets) {
             // Small triangles' samples are stored unconditionally: whether any lane passes
-            // varies from sample to sample, a branch on it is often mispredicted, and an empty
-            // masked store costs less (4 samples: small 4%, tiny 7% faster). At one sample, and
-            // in the general path's blocks, which Hi-Z has sorted, the branch measured faster.
+            // varies from lane group to lane group and sample to sample, a branch on it is
+            // often mispredicted, and an empty masked store costs less (4 samples: small 4%,
+            // tiny 7% faster; 1 sample: small 2%). In the general path's blocks, which Hi-Z has
+            // sorted, the branch measured faster.
             hn::BlendedStore(z, pass, df, plane);
             wrote |= !hn::AllFalse(df, pass);
           } else if (!hn::AllFalse(df, pass)) {
