@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <new>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -53,5 +54,27 @@ struct CacheAlignedAllocator {
 
 template <typename T>
 using AlignedVector = std::vector<T, CacheAlignedAllocator<T>>;
+
+// CacheAlignedAllocator for arrays whose elements are always written before they are read:
+// elements made without a value (resize(), emplace_back()) are default-initialized, which for
+// a trivial type leaves the memory untouched, so a writer can fill them with streaming stores
+// instead of first writing zeros through the cache.
+template <typename T>
+struct UninitializedAllocator : CacheAlignedAllocator<T> {
+  UninitializedAllocator() = default;
+  template <typename U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+template <typename T>
+using UninitializedVector = std::vector<T, UninitializedAllocator<T>>;
 
 }  // namespace tessera::detail

@@ -134,6 +134,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.pipeline = &pipeline;
   ctx.guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
   ctx.check_finite = check_finite;
+  ctx.bin_tile_log2 = grid.size_log2;
   ctx.sample_dx_lo = ctx.sample_dx_hi = pattern[0].dx;
   ctx.sample_dy_lo = ctx.sample_dy_hi = pattern[0].dy;
   for (const SampleOffset& o : pattern) {
@@ -238,19 +239,11 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
           const size_t batch_end = std::min(chunk.end, t + batch);
           const size_t first = chunk.setups.size();
           const Counters before = chunk.counters;
-          if (!st.setup(ctx, input, t, batch_end, chunk.setups, chunk.counters)) {
+          if (!st.setup(ctx, input, t, batch_end, chunk.setups, chunk.bins, chunk.counters)) {
             // A NaN or infinity (ctx.check_finite): the draw stops with validation's error.
             chunk.non_finite = true;
             chunk.stopped_at = t;
             break;
-          }
-          for (size_t i = first; i < chunk.setups.size(); ++i) {
-            const TriangleSetup& s = chunk.setups[i];
-            chunk.bins.record(
-                {static_cast<uint16_t>(static_cast<uint32_t>(s.x0) >> grid.size_log2),
-                 static_cast<uint16_t>(static_cast<uint32_t>(s.y0) >> grid.size_log2),
-                 static_cast<uint16_t>(static_cast<uint32_t>(s.x1) >> grid.size_log2),
-                 static_cast<uint16_t>(static_cast<uint32_t>(s.y1) >> grid.size_log2)});
           }
           const bool fits = chunk.setups.size() <= setup_capacity &&
                             chunk.bins.references() <= reference_capacity &&

@@ -19,6 +19,7 @@
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "engine/src/fast/setup_kernel.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
 #include "engine/src/fast/block_kernel.hpp"
@@ -278,14 +279,42 @@ HWY_INLINE bool batch_finite(const Batch& batch, size_t lanes) {
   return hn::AllTrue(df, finite);
 }
 
+// The bin tiles of a setup's bounding box.
+HWY_INLINE binning::TileRect tile_rect(const TriangleSetup& s, uint32_t log2) {
+  return {static_cast<uint16_t>(static_cast<uint32_t>(s.x0) >> log2),
+          static_cast<uint16_t>(static_cast<uint32_t>(s.y0) >> log2),
+          static_cast<uint16_t>(static_cast<uint32_t>(s.x1) >> log2),
+          static_cast<uint16_t>(static_cast<uint32_t>(s.y1) >> log2)};
+}
+
+// Appends `count` records to `setups` with streaming stores: the records are read long after,
+// by the raster phase, so writing them through the cache would first read each line from
+// memory for nothing. A record is 160 bytes at a multiple of 160 from a 64-byte aligned start:
+// whole 32-byte pieces, each aligned.
+HWY_INLINE void stream_records(const TriangleSetup* staged, size_t count, SetupList& setups) {
+  static_assert(sizeof(TriangleSetup) % 32 == 0 && alignof(TriangleSetup) <= 32);
+  const hn::CappedTag<uint64_t, 4> d;  // at most 32 bytes: each store stays aligned
+  const size_t at = setups.size();
+  setups.resize(at + count);  // uninitialized (SetupList's allocator)
+  const uint64_t* from = reinterpret_cast<const uint64_t*>(staged);
+  uint64_t* to = reinterpret_cast<uint64_t*>(setups.data() + at);
+  for (size_t i = 0; i < count * sizeof(TriangleSetup) / sizeof(uint64_t); i += hn::Lanes(d))
+    hn::Stream(hn::Load(d, from + i), d, to + i);
+}
+
 bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, size_t end,
-                SetupList& setups, Counters& counters) {
+                SetupList& setups, binning::Bins& bins, Counters& counters) {
   const hn::ScalableTag<double> d;
   const size_t lanes = std::min(hn::Lanes(d), kMaxLanes);
   const bool indexed = !input.indices.empty();
   const uint32_t count = input.attribute_count;
   Batch batch;
   Out out;
+  // One lane group's records, packed here (in cache) and streamed out together; zeroed once so
+  // that the padding streamed with them is not indeterminate.
+  alignas(64) TriangleSetup staged[kMaxLanes];
+  std::memset(static_cast<void*>(staged), 0, sizeof(staged));
+  bool ok = true;
   for (size_t t = begin; t < end; t += lanes) {
     const size_t used = std::min(lanes, end - t);
     for (size_t l = 0; l < lanes; ++l) {
@@ -303,11 +332,18 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         }
       }
     }
-    if (ctx.check_finite && !batch_finite(batch, lanes)) return false;
+    if (ctx.check_finite && !batch_finite(batch, lanes)) {
+      ok = false;
+      break;
+    }
     SetupBatchLanes(ctx, batch, lanes, out);
+    size_t packed = 0;
     for (size_t l = 0; l < used; ++l) {
       if (out.inside[l] == 0.0) {
-        // A clip plane cuts this triangle: the scalar path clips it (and counts it).
+        // A clip plane cuts this triangle: the scalar path clips it (and counts it), after the
+        // records before it.
+        stream_records(staged, packed, setups);
+        packed = 0;
         std::array<const Float4*, 3> position;
         std::array<const float*, 3> attribute{};
         for (int k = 0; k < 3; ++k) {
@@ -315,7 +351,10 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
           position[k] = &input.positions[vertex];
           if (count) attribute[k] = &input.attributes[vertex * count];
         }
+        const size_t first = setups.size();
         setup_triangle(ctx, position, attribute, setups, counters);
+        for (size_t i = first; i < setups.size(); ++i)
+          bins.record(tile_rect(setups[i], ctx.bin_tile_log2));
         continue;
       }
       ++counters.triangles_submitted;
@@ -325,7 +364,7 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
       }
       ++counters.triangles_rasterized;
       if (out.any_sample[l] == 0.0) continue;  // covers no sample
-      TriangleSetup& s = setups.emplace_back();
+      TriangleSetup& s = staged[packed++];
       for (int k = 0; k < 3; ++k) {
         s.a[k] = static_cast<int32_t>(out.a[k][l]);
         s.b[k] = static_cast<int32_t>(out.b[k][l]);
@@ -352,9 +391,12 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         s.qa_dx[c] = static_cast<float>(out.qa_dx[c][l]);
         s.qa_dy[c] = static_cast<float>(out.qa_dy[c][l]);
       }
+      bins.record(tile_rect(s, ctx.bin_tile_log2));
     }
+    stream_records(staged, packed, setups);
   }
-  return true;
+  hwy::FlushStream();
+  return ok;
 }
 
 }  // namespace tessera::fast::HWY_NAMESPACE

@@ -114,6 +114,7 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
     wdx[k] = static_cast<double>(-dy) * per_pixel;
     wdy[k] = static_cast<double>(dx) * per_pixel;
   }
+  t.centres = 0;
   if (ctx.centre_sample_only() && t.x1 - t.x0 <= 1 && t.y1 - t.y0 <= 1) {
     // One sample per pixel and at most 2x2 pixels: drawn only if a pixel centre is inside,
     // and the kernel is told which.

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "engine/src/aligned_allocator.hpp"
@@ -36,7 +37,7 @@ struct TriangleSetup {
   // One sample per pixel and a bounding box of at most 2x2 pixels: which of its pixel centres
   // are inside, bit (y - y0) * 4 + (x - x0), from exact edge functions. 0 when not known (any
   // other triangle): the kernel then tests the edges itself.
-  uint8_t centres = 0;
+  uint8_t centres;
 
   // Planes over pixel coordinates, as value at the centre of pixel (x0, y0) plus gradients per
   // pixel. z is z/w in [0, 1]. q is 1/w scaled so its largest vertex value is 1 (1 everywhere
@@ -50,8 +51,10 @@ struct TriangleSetup {
   std::array<float, 4> qa_dx, qa_dy;
 };
 
-// Setups of one worker's range of a draw (large: see aligned_allocator.hpp).
-using SetupList = detail::AlignedVector<TriangleSetup>;
+// Setups of one worker's range of a draw (large: see aligned_allocator.hpp). The vectorized
+// setup appends uninitialized records and fills them with streaming stores.
+static_assert(std::is_trivially_default_constructible_v<TriangleSetup>);
+using SetupList = detail::UninitializedVector<TriangleSetup>;
 
 struct SetupContext {
   uint32_t width = 0;
@@ -68,6 +71,8 @@ struct SetupContext {
   // The draw's positions and colours were not checked for NaN and infinity: the vectorized
   // setup checks each batch it reads (setup_kernel.hpp).
   bool check_finite = false;
+  // log2 of the bin tiles' side in pixels: the vectorized setup records each setup's tiles.
+  uint32_t bin_tile_log2 = 6;
 
   // One sample per pixel, at its centre.
   bool centre_sample_only() const {
