@@ -39,7 +39,7 @@ struct Batch {
   alignas(64) float color[3][kMaxLanes][4];  // r, g, b, a
 };
 
-// Results per lane, written by the vector code and packed into TriangleSetup by scalar code.
+// Results per lane, written by the vector code, and the records' bytes made from them.
 struct Out {
   alignas(64) double inside[kMaxLanes], keep[kMaxLanes], any_sample[kMaxLanes];
   alignas(64) double x0[kMaxLanes], y0[kMaxLanes], x1[kMaxLanes], y1[kMaxLanes];
@@ -49,6 +49,10 @@ struct Out {
       z_max[kMaxLanes];
   alignas(64) double q0[kMaxLanes], q_dx[kMaxLanes], q_dy[kMaxLanes];
   alignas(64) double qa0[4][kMaxLanes], qa_dx[4][kMaxLanes], qa_dy[4][kMaxLanes];
+  // The records' bytes, converted and interleaved by PackLanes: lane l's 16-byte pieces at
+  // wide[k][2 l] (TriangleSetup's first 32 bytes) and words[k][4 l] (the other 128).
+  alignas(64) uint64_t wide[2][kMaxLanes * 2];
+  alignas(64) uint32_t words[8][kMaxLanes * 4];
 };
 
 template <class D, class V>
@@ -62,6 +66,44 @@ HWY_INLINE V round_to_int(D d, V v) {
 template <class D, class M>
 HWY_INLINE hn::Vec<D> as_double_mask(D d, M m) {
   return hn::IfThenElseZero(m, hn::Set(d, 1.0));
+}
+
+// TriangleSetup's bytes for the lanes from l0, from the fields Out holds for them (stored just
+// before, in cache): each value converted as the scalar packing did (static_cast to int32,
+// int64, float or bool: the same bits) and interleaved lane by lane into 16-byte pieces in
+// the record's order (triangle_setup.hpp), so a record is ten 16-byte copies.
+template <class D>
+HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
+  const hn::RebindToSigned<D> d64;
+  const hn::RebindToUnsigned<D> du64;
+  const hn::Rebind<int32_t, D> di;
+  const hn::Rebind<uint32_t, D> du;
+  const hn::Rebind<float, D> df;
+  const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
+  const auto i64 = [&](const double* p) { return hn::BitCast(du64, hn::ConvertTo(d64, load(p))); };
+  const auto i32 = [&](const double* p) { return hn::BitCast(du, hn::DemoteTo(di, load(p))); };
+  const auto f32 = [&](const double* p) { return hn::BitCast(du, hn::DemoteTo(df, load(p))); };
+  hn::StoreInterleaved2(i64(out.c[0]), i64(out.c[1]), du64, out.wide[0] + 2 * l0);
+  hn::StoreInterleaved2(i64(out.c[2]), hn::BitCast(du64, load(out.z0)), du64, out.wide[1] + 2 * l0);
+  // narrow, small and flat_q as bools (1 where non-zero) and centres, one byte each.
+  const auto flag = [&](const double* p, int shift) {
+    return hn::IfThenElseZero(hn::RebindMask(du, hn::Ne(hn::DemoteTo(df, load(p)), hn::Zero(df))),
+                              hn::Set(du, 1u << shift));
+  };
+  const auto flags = hn::Or(hn::Or(flag(out.narrow, 0), flag(out.small, 8)),
+                            hn::Or(flag(out.flat_q, 16), hn::ShiftLeft<24>(i32(out.centres))));
+  const auto put = [&](int k, auto v0, auto v1, auto v2, auto v3) {
+    hn::StoreInterleaved4(v0, v1, v2, v3, du, out.words[k] + 4 * l0);
+  };
+  put(0, i32(out.a[0]), i32(out.a[1]), i32(out.a[2]), i32(out.b[0]));
+  put(1, i32(out.b[1]), i32(out.b[2]), i32(out.x0), i32(out.y0));
+  put(2, i32(out.x1), i32(out.y1), flags, f32(out.z_dx));
+  put(3, f32(out.z_dy), f32(out.z_min), f32(out.z_max), f32(out.q0));
+  put(4, f32(out.q_dx), f32(out.q_dy), f32(out.qa0[0]), f32(out.qa0[1]));
+  put(5, f32(out.qa0[2]), f32(out.qa0[3]), f32(out.qa_dx[0]), f32(out.qa_dx[1]));
+  put(6, f32(out.qa_dx[2]), f32(out.qa_dx[3]), f32(out.qa_dy[0]), f32(out.qa_dy[1]));
+  const auto zero = hn::Zero(du);
+  put(7, f32(out.qa_dy[2]), f32(out.qa_dy[3]), zero, zero);
 }
 
 void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
@@ -260,6 +302,7 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
       plane(hn::Mul(q[0], C[0][c]), hn::Mul(q[1], C[1][c]), hn::Mul(q[2], C[2][c]), out.qa0[c],
             out.qa_dx[c], out.qa_dy[c]);
     }
+    PackLanes(d, l0, out);
   }
 }
 
@@ -287,19 +330,15 @@ HWY_INLINE binning::TileRect tile_rect(const TriangleSetup& s, uint32_t log2) {
           static_cast<uint16_t>(static_cast<uint32_t>(s.y1) >> log2)};
 }
 
-// Appends `count` records to `setups` with streaming stores: the records are read long after,
-// by the raster phase, so writing them through the cache would first read each line from
-// memory for nothing. A record is 160 bytes at a multiple of 160 from a 64-byte aligned start:
-// whole 32-byte pieces, each aligned.
-HWY_INLINE void stream_records(const TriangleSetup* staged, size_t count, SetupList& setups) {
-  static_assert(sizeof(TriangleSetup) % 32 == 0 && alignof(TriangleSetup) <= 32);
-  const hn::CappedTag<uint64_t, 4> d;  // at most 32 bytes: each store stays aligned
-  const size_t at = setups.size();
-  setups.resize(at + count);  // uninitialized (SetupList's allocator)
-  const uint64_t* from = reinterpret_cast<const uint64_t*>(staged);
-  uint64_t* to = reinterpret_cast<uint64_t*>(setups.data() + at);
-  for (size_t i = 0; i < count * sizeof(TriangleSetup) / sizeof(uint64_t); i += hn::Lanes(d))
-    hn::Stream(hn::Load(d, from + i), d, to + i);
+// Streams 16 bytes (a record's piece) from `from` to `to`, 16-byte aligned: the records are
+// read long after, by the raster phase, so writing them through the cache would first read
+// each line from memory for nothing.
+HWY_INLINE void stream_piece(const void* from, void* to) {
+  const hn::CappedTag<uint32_t, 4> d;
+  const uint32_t* f = static_cast<const uint32_t*>(from);
+  uint32_t* t = static_cast<uint32_t*>(to);
+  for (size_t i = 0; i < 4; i += hn::Lanes(d))
+    hn::Stream(hn::LoadU(d, f + i), d, t + i);
 }
 
 bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, size_t end,
@@ -310,10 +349,6 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
   const uint32_t count = input.attribute_count;
   Batch batch;
   Out out;
-  // One lane group's records, packed here (in cache) and streamed out together; zeroed once so
-  // that the padding streamed with them is not indeterminate.
-  alignas(64) TriangleSetup staged[kMaxLanes];
-  std::memset(static_cast<void*>(staged), 0, sizeof(staged));
   bool ok = true;
   for (size_t t = begin; t < end; t += lanes) {
     const size_t used = std::min(lanes, end - t);
@@ -337,13 +372,15 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
       break;
     }
     SetupBatchLanes(ctx, batch, lanes, out);
-    size_t packed = 0;
+    // Room for every lane's record (uninitialized: SetupList's allocator); `next` is the first
+    // not written, and the list is cut to it after the lanes.
+    size_t next = setups.size();
+    setups.resize(next + used);
     for (size_t l = 0; l < used; ++l) {
       if (out.inside[l] == 0.0) {
         // A clip plane cuts this triangle: the scalar path clips it (and counts it), after the
         // records before it.
-        stream_records(staged, packed, setups);
-        packed = 0;
+        setups.resize(next);
         std::array<const Float4*, 3> position;
         std::array<const float*, 3> attribute{};
         for (int k = 0; k < 3; ++k) {
@@ -351,10 +388,11 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
           position[k] = &input.positions[vertex];
           if (count) attribute[k] = &input.attributes[vertex * count];
         }
-        const size_t first = setups.size();
         setup_triangle(ctx, position, attribute, setups, counters);
-        for (size_t i = first; i < setups.size(); ++i)
+        for (size_t i = next; i < setups.size(); ++i)
           bins.record(tile_rect(setups[i], ctx.bin_tile_log2));
+        next = setups.size();
+        setups.resize(next + used - l - 1);
         continue;
       }
       ++counters.triangles_submitted;
@@ -364,36 +402,20 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
       }
       ++counters.triangles_rasterized;
       if (out.any_sample[l] == 0.0) continue;  // covers no sample
-      TriangleSetup& s = staged[packed++];
-      for (int k = 0; k < 3; ++k) {
-        s.a[k] = static_cast<int32_t>(out.a[k][l]);
-        s.b[k] = static_cast<int32_t>(out.b[k][l]);
-        s.c[k] = static_cast<int64_t>(out.c[k][l]);
-      }
-      s.x0 = static_cast<int32_t>(out.x0[l]);
-      s.y0 = static_cast<int32_t>(out.y0[l]);
-      s.x1 = static_cast<int32_t>(out.x1[l]);
-      s.y1 = static_cast<int32_t>(out.y1[l]);
-      s.narrow = out.narrow[l] != 0.0;
-      s.small = out.small[l] != 0.0;
-      s.flat_q = out.flat_q[l] != 0.0;
-      s.centres = static_cast<uint8_t>(out.centres[l]);
-      s.z0 = out.z0[l];
-      s.z_dx = static_cast<float>(out.z_dx[l]);
-      s.z_dy = static_cast<float>(out.z_dy[l]);
-      s.z_min = static_cast<float>(out.z_min[l]);
-      s.z_max = static_cast<float>(out.z_max[l]);
-      s.q0 = static_cast<float>(out.q0[l]);
-      s.q_dx = static_cast<float>(out.q_dx[l]);
-      s.q_dy = static_cast<float>(out.q_dy[l]);
-      for (int c = 0; c < 4; ++c) {
-        s.qa0[c] = static_cast<float>(out.qa0[c][l]);
-        s.qa_dx[c] = static_cast<float>(out.qa_dx[c][l]);
-        s.qa_dy[c] = static_cast<float>(out.qa_dy[c][l]);
-      }
-      bins.record(tile_rect(s, ctx.bin_tile_log2));
+      // The record, in ten 16-byte pieces (a record lies at a multiple of 160 bytes from a
+      // 64-byte aligned start: every piece is aligned).
+      char* record = reinterpret_cast<char*>(&setups[next++]);
+      for (int k = 0; k < 2; ++k)
+        stream_piece(out.wide[k] + 2 * l, record + 16 * k);
+      for (int k = 0; k < 8; ++k)
+        stream_piece(out.words[k] + 4 * l, record + 32 + 16 * k);
+      const uint32_t log2 = ctx.bin_tile_log2;
+      bins.record({static_cast<uint16_t>(static_cast<uint32_t>(out.x0[l]) >> log2),
+                   static_cast<uint16_t>(static_cast<uint32_t>(out.y0[l]) >> log2),
+                   static_cast<uint16_t>(static_cast<uint32_t>(out.x1[l]) >> log2),
+                   static_cast<uint16_t>(static_cast<uint32_t>(out.y1[l]) >> log2)});
     }
-    stream_records(staged, packed, setups);
+    setups.resize(next);
   }
   hwy::FlushStream();
   return ok;

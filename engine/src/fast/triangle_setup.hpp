@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <type_traits>
 #include <vector>
@@ -25,9 +26,16 @@ namespace tessera::fast {
 // int64. `narrow` says 32-bit lanes can step the triangle exactly inside one 8x8 block: see
 // block_kernel.hpp for the bound.
 struct TriangleSetup {
+  // The 8-byte fields first and the 4-byte ones after them, in the order the vectorized setup
+  // writes them (setup_kernel.cpp: two 16-byte pieces of 8-byte fields, then eight of 4-byte).
+  std::array<int64_t, 3> c;
+  // Planes over pixel coordinates, as value at the centre of pixel (x0, y0) plus gradients per
+  // pixel (z0 below, the gradients further down). z is z/w in [0, 1]. q is 1/w scaled so its
+  // largest vertex value is 1 (1 everywhere for affine interpolation); qa[c] is q times colour
+  // channel c, so colour = qa / q.
+  double z0;
   std::array<int32_t, 3> a;
   std::array<int32_t, 3> b;
-  std::array<int64_t, 3> c;
   // The pixels with a sample inside the triangle's bounding box (inclusive), on screen: none
   // outside may be covered.
   int32_t x0, y0, x1, y1;
@@ -38,22 +46,22 @@ struct TriangleSetup {
   // are inside, bit (y - y0) * 4 + (x - x0), from exact edge functions. 0 when not known (any
   // other triangle): the kernel then tests the edges itself.
   uint8_t centres;
-
-  // Planes over pixel coordinates, as value at the centre of pixel (x0, y0) plus gradients per
-  // pixel. z is z/w in [0, 1]. q is 1/w scaled so its largest vertex value is 1 (1 everywhere
-  // for affine interpolation); qa[c] is q times colour channel c, so colour = qa / q.
-  double z0;
   float z_dx, z_dy;
   float z_min, z_max;  // over the vertices
   float q0;
   float q_dx, q_dy;
   std::array<float, 4> qa0;
   std::array<float, 4> qa_dx, qa_dy;
+  uint32_t unused[2];  // to 160 bytes: five 32-byte pieces (setup_kernel.cpp streams them)
 };
 
 // Setups of one worker's range of a draw (large: see aligned_allocator.hpp). The vectorized
 // setup appends uninitialized records and fills them with streaming stores.
 static_assert(std::is_trivially_default_constructible_v<TriangleSetup>);
+static_assert(sizeof(TriangleSetup) == 160 && offsetof(TriangleSetup, a) == 32 &&
+              offsetof(TriangleSetup, x0) == 56 && offsetof(TriangleSetup, narrow) == 72 &&
+              offsetof(TriangleSetup, z_dx) == 76 && offsetof(TriangleSetup, qa0) == 104 &&
+              offsetof(TriangleSetup, unused) == 152);
 using SetupList = detail::UninitializedVector<TriangleSetup>;
 
 struct SetupContext {
