@@ -537,6 +537,33 @@ TEST(FastEngine, ImagesAreByteIdenticalAcrossThreadsRunsAndTargets) {
   });
 }
 
+TEST(FastEngine, VerticesAtUnitWDrawTheSameBytesAsAnyOtherW) {
+  // The setup skips the divisions by w for a vector of triangles whose vertices all have w = 1
+  // (orthographic and 2D draws). Scaling a triangle's clip coordinates by 2 is exact and leaves
+  // its window coordinates, depth and (flat) q the same, so the same scene with every third
+  // triangle scaled (no vector of triangles all at w = 1, wherever vectors start) must draw the
+  // same bytes, at one and four samples, and both must match the reference's coverage.
+  for (uint32_t samples : {1u, 4u}) {
+    Scene unit = soup(650 + samples, 6000, 6.0f, true);
+    unit.samples = samples;
+    Scene scaled = unit;
+    for (size_t i = 0; i < scaled.positions.size(); ++i) {
+      if ((i / 3) % 3 != 0) continue;
+      Float4& p = scaled.positions[i];
+      p = {p.x * 2.0f, p.y * 2.0f, p.z * 2.0f, p.w * 2.0f};
+    }
+    const Result ref = render(unit, Backend::kReference);
+    for_each_config([&](const Config& config) {
+      const Result a = render(unit, Backend::kFast, config);
+      const Result b = render(scaled, Backend::kFast, config);
+      expect_same_coverage(a, ref, "w = 1");
+      EXPECT_EQ(a.rgba8, b.rgba8) << samples << " samples";
+      EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)))
+          << samples << " samples";
+    });
+  }
+}
+
 TEST(FastEngine, EveryBinTileSizeDrawsTheSameImage) {
   // 32-pixel bin tiles split storage tiles, 128-pixel ones span 2x2 of them (and the screen's
   // partial last column and row); the image is the same bytes for every size.

@@ -106,19 +106,20 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
   put(7, f32(out.qa_dy[2]), f32(out.qa_dy[3]), zero, zero);
 }
 
-void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
+// One vector of lanes from l0. kUnitW: every vertex has w = 1 (orthographic and 2D draws), so
+// the divisions by w are skipped: x / 1 is x exactly, and the results are the same bits.
+template <bool kUnitW>
+HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, size_t l0, Out& out) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<float, decltype(d)> df;  // the input floats, as many lanes
   using V = hn::Vec<decltype(d)>;
-  const size_t n = hn::Lanes(d);
   const PipelineState& p = *ctx.pipeline;
   const bool gl_depth = p.clip_depth == ClipDepth::kNegativeOneToOne;
   const int bits = static_cast<int>(ctx.subpixel_bits);
   const int shift = bits - 4;
   const double scale = static_cast<double>(1u << bits);
   const auto zero = hn::Zero(d);
-
-  for (size_t l0 = 0; l0 < lanes_used; l0 += n) {
+  {
     V X[3], Y[3], Z[3], IW[3];
     auto inside = hn::Eq(zero, zero);
     for (int k = 0; k < 3; ++k) {
@@ -139,12 +140,13 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
       inside = hn::And(inside, hn::Ge(hn::Add(y, gy), zero));
       inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(y), gy), zero));
       // window x = (x / w + 1) * width / 2, window y = (1 - y / w) * height / 2, snapped.
-      const V wx = hn::Mul(hn::Add(hn::Div(x, w), hn::Set(d, 1.0)), hn::Set(d, 0.5 * ctx.width));
-      const V wy = hn::Mul(hn::Sub(hn::Set(d, 1.0), hn::Div(y, w)), hn::Set(d, 0.5 * ctx.height));
+      const V x_w = kUnitW ? x : hn::Div(x, w), y_w = kUnitW ? y : hn::Div(y, w);
+      const V wx = hn::Mul(hn::Add(x_w, hn::Set(d, 1.0)), hn::Set(d, 0.5 * ctx.width));
+      const V wy = hn::Mul(hn::Sub(hn::Set(d, 1.0), y_w), hn::Set(d, 0.5 * ctx.height));
       X[k] = round_to_int(d, hn::Mul(wx, hn::Set(d, scale)));
       Y[k] = round_to_int(d, hn::Mul(wy, hn::Set(d, scale)));
-      Z[k] = hn::Div(z, w);
-      IW[k] = hn::Div(hn::Set(d, 1.0), w);
+      Z[k] = kUnitW ? z : hn::Div(z, w);
+      IW[k] = kUnitW ? hn::Set(d, 1.0) : hn::Div(hn::Set(d, 1.0), w);
     }
     // Lanes outside a plane go to the scalar clipper; give them harmless values here.
     V area = hn::Sub(hn::Mul(hn::Sub(X[1], X[0]), hn::Sub(Y[2], Y[0])),
@@ -296,13 +298,32 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
     const V q_max = hn::Max(hn::Max(IW[0], IW[1]), IW[2]);
     V q[3];
     for (int k = 0; k < 3; ++k)
-      q[k] = hn::IfThenElse(flat, one, hn::Div(IW[k], q_max));
+      q[k] = kUnitW ? one : hn::IfThenElse(flat, one, hn::Div(IW[k], q_max));
     plane(q[0], q[1], q[2], out.q0, out.q_dx, out.q_dy);
     for (int c = 0; c < 4; ++c) {
       plane(hn::Mul(q[0], C[0][c]), hn::Mul(q[1], C[1][c]), hn::Mul(q[2], C[2][c]), out.qa0[c],
             out.qa_dx[c], out.qa_dy[c]);
     }
     PackLanes(d, l0, out);
+  }
+}
+
+void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
+  const hn::ScalableTag<double> d;
+  const hn::Rebind<float, decltype(d)> df;
+  const auto one = hn::Set(df, 1.0f);
+  for (size_t l0 = 0; l0 < lanes_used; l0 += hn::Lanes(d)) {
+    auto unit_w = hn::Eq(one, one);
+    for (int k = 0; k < 3; ++k) {
+      hn::Vec<decltype(df)> x, y, z, w;
+      hn::LoadInterleaved4(df, &in.position[k][l0].x, x, y, z, w);
+      unit_w = hn::And(unit_w, hn::Eq(w, one));
+    }
+    if (hn::AllTrue(df, unit_w)) {
+      SetupLaneGroup<true>(ctx, in, l0, out);
+    } else {
+      SetupLaneGroup<false>(ctx, in, l0, out);
+    }
   }
 }
 
