@@ -106,10 +106,12 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
   put(7, f32(out.qa_dy[2]), f32(out.qa_dy[3]), zero, zero);
 }
 
-// One vector of lanes from l0. kUnitW: every vertex has w = 1 (orthographic and 2D draws), so
-// the divisions by w are skipped: x / 1 is x exactly, and the results are the same bits.
-template <bool kUnitW>
-HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, size_t l0, Out& out) {
+// One vector of lanes from l0, whose vertices' positions `pos` holds as x, y, z, w vectors.
+// kUnitW: every vertex has w = 1 (orthographic and 2D draws), so the divisions by w are
+// skipped: x / 1 is x exactly, and the results are the same bits.
+template <bool kUnitW, class VF>
+HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const VF (&pos)[3][4],
+                               size_t l0, Out& out) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<float, decltype(d)> df;  // the input floats, as many lanes
   using V = hn::Vec<decltype(d)>;
@@ -119,193 +121,186 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, size_t 
   const int shift = bits - 4;
   const double scale = static_cast<double>(1u << bits);
   const auto zero = hn::Zero(d);
-  {
-    V X[3], Y[3], Z[3], IW[3];
-    auto inside = hn::Eq(zero, zero);
-    for (int k = 0; k < 3; ++k) {
-      hn::Vec<decltype(df)> px, py, pz, pw;
-      hn::LoadInterleaved4(df, &in.position[k][l0].x, px, py, pz, pw);
-      const V x = hn::PromoteTo(d, px), y = hn::PromoteTo(d, py), w = hn::PromoteTo(d, pw);
-      // OpenGL's -w <= z <= w becomes 0 <= z <= w: z' = (z + w) / 2 (as setup_triangle).
-      const V z = gl_depth ? hn::Mul(hn::Set(d, 0.5), hn::Add(hn::PromoteTo(d, pz), w))
-                           : hn::PromoteTo(d, pz);
-      // The clip distances of clip.cpp, term for term.
-      const V gx = hn::Mul(hn::Set(d, ctx.guard_band.x), w);
-      const V gy = hn::Mul(hn::Set(d, ctx.guard_band.y), w);
-      inside = hn::And(inside, hn::Ge(z, zero));
-      inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(z), w), zero));
-      inside = hn::And(inside, hn::Ge(hn::Add(w, hn::Set(d, -kMinClipW)), zero));
-      inside = hn::And(inside, hn::Ge(hn::Add(x, gx), zero));
-      inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(x), gx), zero));
-      inside = hn::And(inside, hn::Ge(hn::Add(y, gy), zero));
-      inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(y), gy), zero));
-      // window x = (x / w + 1) * width / 2, window y = (1 - y / w) * height / 2, snapped.
-      const V x_w = kUnitW ? x : hn::Div(x, w), y_w = kUnitW ? y : hn::Div(y, w);
-      const V wx = hn::Mul(hn::Add(x_w, hn::Set(d, 1.0)), hn::Set(d, 0.5 * ctx.width));
-      const V wy = hn::Mul(hn::Sub(hn::Set(d, 1.0), y_w), hn::Set(d, 0.5 * ctx.height));
-      X[k] = round_to_int(d, hn::Mul(wx, hn::Set(d, scale)));
-      Y[k] = round_to_int(d, hn::Mul(wy, hn::Set(d, scale)));
-      Z[k] = kUnitW ? z : hn::Div(z, w);
-      IW[k] = kUnitW ? hn::Set(d, 1.0) : hn::Div(hn::Set(d, 1.0), w);
-    }
-    // Lanes outside a plane go to the scalar clipper; give them harmless values here.
-    V area = hn::Sub(hn::Mul(hn::Sub(X[1], X[0]), hn::Sub(Y[2], Y[0])),
-                     hn::Mul(hn::Sub(Y[1], Y[0]), hn::Sub(X[2], X[0])));
-    // y points down in window space: counter-clockwise in NDC means negative area here.
-    const auto ccw = hn::Lt(area, zero);
-    const bool ccw_front = p.front_face == FrontFace::kCounterClockwise;
-    auto keep = hn::And(inside, hn::Ne(area, zero));
-    if (p.cull == CullMode::kBack) keep = ccw_front ? hn::And(keep, ccw) : hn::AndNot(ccw, keep);
-    if (p.cull == CullMode::kFront) keep = ccw_front ? hn::AndNot(ccw, keep) : hn::And(keep, ccw);
-    // Orient clockwise on screen: swap vertices 1 and 2 where the area is negative.
-    V C[3][4];
-    for (int k = 0; k < 3; ++k) {
-      hn::Vec<decltype(df)> r, g, b, a;
-      hn::LoadInterleaved4(df, &in.color[k][l0][0], r, g, b, a);
-      C[k][0] = hn::PromoteTo(d, r);
-      C[k][1] = hn::PromoteTo(d, g);
-      C[k][2] = hn::PromoteTo(d, b);
-      C[k][3] = hn::PromoteTo(d, a);
-    }
-    {
-      const V x1 = X[1], y1 = Y[1], z1 = Z[1], w1 = IW[1];
-      X[1] = hn::IfThenElse(ccw, X[2], X[1]);
-      X[2] = hn::IfThenElse(ccw, x1, X[2]);
-      Y[1] = hn::IfThenElse(ccw, Y[2], Y[1]);
-      Y[2] = hn::IfThenElse(ccw, y1, Y[2]);
-      Z[1] = hn::IfThenElse(ccw, Z[2], Z[1]);
-      Z[2] = hn::IfThenElse(ccw, z1, Z[2]);
-      IW[1] = hn::IfThenElse(ccw, IW[2], IW[1]);
-      IW[2] = hn::IfThenElse(ccw, w1, IW[2]);
-      for (int c = 0; c < 4; ++c) {
-        const V c1 = C[1][c];
-        C[1][c] = hn::IfThenElse(ccw, C[2][c], C[1][c]);
-        C[2][c] = hn::IfThenElse(ccw, c1, C[2][c]);
-      }
-      area = hn::Abs(area);
-    }
-    // On screen (culled if not), then the pixels with a sample inside the vertices' bounding
-    // box, clamped to the screen (as triangle_setup.cpp; scaling by 2^-bits is exact).
-    const V lo_x = hn::Min(hn::Min(X[0], X[1]), X[2]), hi_x = hn::Max(hn::Max(X[0], X[1]), X[2]);
-    const V lo_y = hn::Min(hn::Min(Y[0], Y[1]), Y[2]), hi_y = hn::Max(hn::Max(Y[0], Y[1]), Y[2]);
-    keep = hn::And(keep, hn::And(hn::And(hn::Ge(hi_x, zero), hn::Ge(hi_y, zero)),
-                                 hn::And(hn::Lt(lo_x, hn::Set(d, ctx.width * scale)),
-                                         hn::Lt(lo_y, hn::Set(d, ctx.height * scale)))));
-    const V inv_scale = hn::Set(d, 1.0 / scale);
-    const auto reach = [&](int32_t offset) {  // a sample offset (1/16 px) from the pixel corner
-      return hn::Set(d, static_cast<double>(int64_t{8 + offset} << shift));
-    };
-    const V bx0 =
-        hn::Max(hn::Ceil(hn::Mul(hn::Sub(lo_x, reach(ctx.sample_dx_hi)), inv_scale)), zero);
-    const V by0 =
-        hn::Max(hn::Ceil(hn::Mul(hn::Sub(lo_y, reach(ctx.sample_dy_hi)), inv_scale)), zero);
-    const V bx1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_x, reach(ctx.sample_dx_lo)), inv_scale)),
-                          hn::Set(d, ctx.width - 1.0));
-    const V by1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_y, reach(ctx.sample_dy_lo)), inv_scale)),
-                          hn::Set(d, ctx.height - 1.0));
-    auto any_sample = hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1));
-    hn::Store(as_double_mask(d, inside), d, out.inside + l0);
-    hn::Store(as_double_mask(d, keep), d, out.keep + l0);
-    hn::Store(bx0, d, out.x0 + l0);
-    hn::Store(by0, d, out.y0 + l0);
-    hn::Store(bx1, d, out.x1 + l0);
-    hn::Store(by1, d, out.y1 + l0);
-
-    // Edges and barycentric planes (see triangle_setup.cpp).
-    const V cx = hn::Mul(hn::Add(hn::Mul(bx0, hn::Set(d, 16.0)), hn::Set(d, 8.0)),
-                         hn::Set(d, static_cast<double>(1u << shift)));
-    const V cy = hn::Mul(hn::Add(hn::Mul(by0, hn::Set(d, 16.0)), hn::Set(d, 8.0)),
-                         hn::Set(d, static_cast<double>(1u << shift)));
-    const V inv_area = hn::Div(hn::Set(d, 1.0), area);
-    const V per_pixel = hn::Mul(hn::Set(d, scale), inv_area);
-    V weight0[3], wdx[3], wdy[3];
-    V max_step = zero, max_delta = zero;
-    // One sample per pixel and a bounding box of at most 2x2 pixels: whether a pixel centre
-    // of the box is inside, from the edge functions there (exact in double: below 2^51).
-    // If none is, the triangle covers nothing and is not binned.
-    const bool centre_only = ctx.centre_sample_only();
-    const V box_dx = hn::Min(hn::Sub(bx1, bx0), hn::Set(d, 1.0));  // 0 or 1 in a small box
-    const V box_dy = hn::Min(hn::Sub(by1, by0), hn::Set(d, 1.0));
-    auto in00 = hn::Eq(zero, zero), in10 = in00, in01 = in00, in11 = in00;
-    for (int k = 0; k < 3; ++k) {
-      const int from = (k + 1) % 3, to = (k + 2) % 3;
-      const V dx = hn::Sub(X[to], X[from]), dy = hn::Sub(Y[to], Y[from]);
-      const auto top_left = hn::Or(hn::Lt(dy, zero), hn::And(hn::Eq(dy, zero), hn::Gt(dx, zero)));
-      const V bias = hn::IfThenElseZero(hn::Not(top_left), hn::Set(d, 1.0));
-      hn::Store(hn::Neg(dy), d, out.a[k] + l0);
-      hn::Store(dx, d, out.b[k] + l0);
-      const V c = hn::Sub(hn::Sub(hn::Mul(dy, X[from]), hn::Mul(dx, Y[from])), bias);
-      hn::Store(c, d, out.c[k] + l0);
-      if (centre_only) {
-        const V e00 = hn::Add(hn::Sub(c, hn::Mul(dy, cx)), hn::Mul(dx, cy));
-        const V e10 = hn::Sub(e00, hn::Mul(hn::Mul(dy, hn::Set(d, scale)), box_dx));
-        const V e01 = hn::Add(e00, hn::Mul(hn::Mul(dx, hn::Set(d, scale)), box_dy));
-        const V e11 = hn::Add(e10, hn::Sub(e01, e00));
-        in00 = hn::And(in00, hn::Ge(e00, zero));
-        in10 = hn::And(in10, hn::Ge(e10, zero));
-        in01 = hn::And(in01, hn::Ge(e01, zero));
-        in11 = hn::And(in11, hn::Ge(e11, zero));
-      }
-      max_step = hn::Max(max_step, hn::Add(hn::Abs(dy), hn::Abs(dx)));
-      max_delta = hn::Max(max_delta, hn::Max(hn::Abs(dy), hn::Abs(dx)));
-      weight0[k] = hn::Mul(
-          hn::Sub(hn::Mul(dx, hn::Sub(cy, Y[from])), hn::Mul(dy, hn::Sub(cx, X[from]))), inv_area);
-      wdx[k] = hn::Mul(hn::Neg(dy), per_pixel);
-      wdy[k] = hn::Mul(dx, per_pixel);
-    }
-    hn::Store(as_double_mask(
-                  d, hn::Lt(max_step,
-                            hn::Set(d, static_cast<double>(narrow_edge_limit(ctx.subpixel_bits))))),
-              d, out.narrow + l0);
-    hn::Store(as_double_mask(d, hn::Lt(max_delta, hn::Set(d, 32.0 * scale))), d, out.small + l0);
-    V centres = zero;  // TriangleSetup::centres
-    if (centre_only) {
-      const auto small_box = hn::And(hn::Le(hn::Sub(bx1, bx0), hn::Set(d, 1.0)),
-                                     hn::Le(hn::Sub(by1, by0), hn::Set(d, 1.0)));
-      const auto covered = hn::Or(hn::Or(in00, in10), hn::Or(in01, in11));
-      any_sample = hn::And(any_sample, hn::Or(hn::Not(small_box), covered));
-      // In a box one pixel wide or high, the second column's or row's values repeat the first's.
-      const auto two_x = hn::Gt(box_dx, zero), two_y = hn::Gt(box_dy, zero);
-      const auto bit = [&](auto m, double value) {
-        return hn::IfThenElseZero(m, hn::Set(d, value));
-      };
-      centres = hn::Add(hn::Add(bit(in00, 1.0), bit(hn::And(in10, two_x), 2.0)),
-                        hn::Add(bit(hn::And(in01, two_y), 16.0),
-                                bit(hn::And(in11, hn::And(two_x, two_y)), 32.0)));
-      centres = hn::IfThenElseZero(small_box, centres);
-    }
-    hn::Store(centres, d, out.centres + l0);
-    hn::Store(as_double_mask(d, any_sample), d, out.any_sample + l0);
-
-    auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {
-      hn::Store(hn::Add(hn::Add(hn::Mul(weight0[0], v0), hn::Mul(weight0[1], v1)),
-                        hn::Mul(weight0[2], v2)),
-                d, at0 + l0);
-      hn::Store(hn::Add(hn::Add(hn::Mul(wdx[0], v0), hn::Mul(wdx[1], v1)), hn::Mul(wdx[2], v2)), d,
-                gx + l0);
-      hn::Store(hn::Add(hn::Add(hn::Mul(wdy[0], v0), hn::Mul(wdy[1], v1)), hn::Mul(wdy[2], v2)), d,
-                gy + l0);
-    };
-    plane(Z[0], Z[1], Z[2], out.z0, out.z_dx, out.z_dy);
-    const V one = hn::Set(d, 1.0);
-    hn::Store(hn::Min(hn::Max(hn::Min(hn::Min(Z[0], Z[1]), Z[2]), zero), one), d, out.z_min + l0);
-    hn::Store(hn::Min(hn::Max(hn::Max(hn::Max(Z[0], Z[1]), Z[2]), zero), one), d, out.z_max + l0);
-
-    const bool affine = p.interpolation == Interpolation::kAffine;
-    const auto flat =
-        affine ? hn::Eq(zero, zero) : hn::And(hn::Eq(IW[0], IW[1]), hn::Eq(IW[1], IW[2]));
-    hn::Store(as_double_mask(d, flat), d, out.flat_q + l0);
-    const V q_max = hn::Max(hn::Max(IW[0], IW[1]), IW[2]);
-    V q[3];
-    for (int k = 0; k < 3; ++k)
-      q[k] = kUnitW ? one : hn::IfThenElse(flat, one, hn::Div(IW[k], q_max));
-    plane(q[0], q[1], q[2], out.q0, out.q_dx, out.q_dy);
-    for (int c = 0; c < 4; ++c) {
-      plane(hn::Mul(q[0], C[0][c]), hn::Mul(q[1], C[1][c]), hn::Mul(q[2], C[2][c]), out.qa0[c],
-            out.qa_dx[c], out.qa_dy[c]);
-    }
-    PackLanes(d, l0, out);
+  V X[3], Y[3], Z[3], IW[3];
+  auto inside = hn::Eq(zero, zero);
+  for (int k = 0; k < 3; ++k) {
+    const VF &px = pos[k][0], &py = pos[k][1], &pz = pos[k][2], &pw = pos[k][3];
+    const V x = hn::PromoteTo(d, px), y = hn::PromoteTo(d, py), w = hn::PromoteTo(d, pw);
+    // OpenGL's -w <= z <= w becomes 0 <= z <= w: z' = (z + w) / 2 (as setup_triangle).
+    const V z = gl_depth ? hn::Mul(hn::Set(d, 0.5), hn::Add(hn::PromoteTo(d, pz), w))
+                         : hn::PromoteTo(d, pz);
+    // The clip distances of clip.cpp, term for term.
+    const V gx = hn::Mul(hn::Set(d, ctx.guard_band.x), w);
+    const V gy = hn::Mul(hn::Set(d, ctx.guard_band.y), w);
+    inside = hn::And(inside, hn::Ge(z, zero));
+    inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(z), w), zero));
+    inside = hn::And(inside, hn::Ge(hn::Add(w, hn::Set(d, -kMinClipW)), zero));
+    inside = hn::And(inside, hn::Ge(hn::Add(x, gx), zero));
+    inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(x), gx), zero));
+    inside = hn::And(inside, hn::Ge(hn::Add(y, gy), zero));
+    inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(y), gy), zero));
+    // window x = (x / w + 1) * width / 2, window y = (1 - y / w) * height / 2, snapped.
+    const V x_w = kUnitW ? x : hn::Div(x, w), y_w = kUnitW ? y : hn::Div(y, w);
+    const V wx = hn::Mul(hn::Add(x_w, hn::Set(d, 1.0)), hn::Set(d, 0.5 * ctx.width));
+    const V wy = hn::Mul(hn::Sub(hn::Set(d, 1.0), y_w), hn::Set(d, 0.5 * ctx.height));
+    X[k] = round_to_int(d, hn::Mul(wx, hn::Set(d, scale)));
+    Y[k] = round_to_int(d, hn::Mul(wy, hn::Set(d, scale)));
+    Z[k] = kUnitW ? z : hn::Div(z, w);
+    IW[k] = kUnitW ? hn::Set(d, 1.0) : hn::Div(hn::Set(d, 1.0), w);
   }
+  // Lanes outside a plane go to the scalar clipper; give them harmless values here.
+  V area = hn::Sub(hn::Mul(hn::Sub(X[1], X[0]), hn::Sub(Y[2], Y[0])),
+                   hn::Mul(hn::Sub(Y[1], Y[0]), hn::Sub(X[2], X[0])));
+  // y points down in window space: counter-clockwise in NDC means negative area here.
+  const auto ccw = hn::Lt(area, zero);
+  const bool ccw_front = p.front_face == FrontFace::kCounterClockwise;
+  auto keep = hn::And(inside, hn::Ne(area, zero));
+  if (p.cull == CullMode::kBack) keep = ccw_front ? hn::And(keep, ccw) : hn::AndNot(ccw, keep);
+  if (p.cull == CullMode::kFront) keep = ccw_front ? hn::AndNot(ccw, keep) : hn::And(keep, ccw);
+  // Orient clockwise on screen: swap vertices 1 and 2 where the area is negative.
+  V C[3][4];
+  for (int k = 0; k < 3; ++k) {
+    hn::Vec<decltype(df)> r, g, b, a;
+    hn::LoadInterleaved4(df, &in.color[k][l0][0], r, g, b, a);
+    C[k][0] = hn::PromoteTo(d, r);
+    C[k][1] = hn::PromoteTo(d, g);
+    C[k][2] = hn::PromoteTo(d, b);
+    C[k][3] = hn::PromoteTo(d, a);
+  }
+  {
+    const V x1 = X[1], y1 = Y[1], z1 = Z[1], w1 = IW[1];
+    X[1] = hn::IfThenElse(ccw, X[2], X[1]);
+    X[2] = hn::IfThenElse(ccw, x1, X[2]);
+    Y[1] = hn::IfThenElse(ccw, Y[2], Y[1]);
+    Y[2] = hn::IfThenElse(ccw, y1, Y[2]);
+    Z[1] = hn::IfThenElse(ccw, Z[2], Z[1]);
+    Z[2] = hn::IfThenElse(ccw, z1, Z[2]);
+    IW[1] = hn::IfThenElse(ccw, IW[2], IW[1]);
+    IW[2] = hn::IfThenElse(ccw, w1, IW[2]);
+    for (int c = 0; c < 4; ++c) {
+      const V c1 = C[1][c];
+      C[1][c] = hn::IfThenElse(ccw, C[2][c], C[1][c]);
+      C[2][c] = hn::IfThenElse(ccw, c1, C[2][c]);
+    }
+    area = hn::Abs(area);
+  }
+  // On screen (culled if not), then the pixels with a sample inside the vertices' bounding
+  // box, clamped to the screen (as triangle_setup.cpp; scaling by 2^-bits is exact).
+  const V lo_x = hn::Min(hn::Min(X[0], X[1]), X[2]), hi_x = hn::Max(hn::Max(X[0], X[1]), X[2]);
+  const V lo_y = hn::Min(hn::Min(Y[0], Y[1]), Y[2]), hi_y = hn::Max(hn::Max(Y[0], Y[1]), Y[2]);
+  keep = hn::And(keep, hn::And(hn::And(hn::Ge(hi_x, zero), hn::Ge(hi_y, zero)),
+                               hn::And(hn::Lt(lo_x, hn::Set(d, ctx.width * scale)),
+                                       hn::Lt(lo_y, hn::Set(d, ctx.height * scale)))));
+  const V inv_scale = hn::Set(d, 1.0 / scale);
+  const auto reach = [&](int32_t offset) {  // a sample offset (1/16 px) from the pixel corner
+    return hn::Set(d, static_cast<double>(int64_t{8 + offset} << shift));
+  };
+  const V bx0 = hn::Max(hn::Ceil(hn::Mul(hn::Sub(lo_x, reach(ctx.sample_dx_hi)), inv_scale)), zero);
+  const V by0 = hn::Max(hn::Ceil(hn::Mul(hn::Sub(lo_y, reach(ctx.sample_dy_hi)), inv_scale)), zero);
+  const V bx1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_x, reach(ctx.sample_dx_lo)), inv_scale)),
+                        hn::Set(d, ctx.width - 1.0));
+  const V by1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_y, reach(ctx.sample_dy_lo)), inv_scale)),
+                        hn::Set(d, ctx.height - 1.0));
+  auto any_sample = hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1));
+  hn::Store(as_double_mask(d, inside), d, out.inside + l0);
+  hn::Store(as_double_mask(d, keep), d, out.keep + l0);
+  hn::Store(bx0, d, out.x0 + l0);
+  hn::Store(by0, d, out.y0 + l0);
+  hn::Store(bx1, d, out.x1 + l0);
+  hn::Store(by1, d, out.y1 + l0);
+
+  // Edges and barycentric planes (see triangle_setup.cpp).
+  const V cx = hn::Mul(hn::Add(hn::Mul(bx0, hn::Set(d, 16.0)), hn::Set(d, 8.0)),
+                       hn::Set(d, static_cast<double>(1u << shift)));
+  const V cy = hn::Mul(hn::Add(hn::Mul(by0, hn::Set(d, 16.0)), hn::Set(d, 8.0)),
+                       hn::Set(d, static_cast<double>(1u << shift)));
+  const V inv_area = hn::Div(hn::Set(d, 1.0), area);
+  const V per_pixel = hn::Mul(hn::Set(d, scale), inv_area);
+  V weight0[3], wdx[3], wdy[3];
+  V max_step = zero, max_delta = zero;
+  // One sample per pixel and a bounding box of at most 2x2 pixels: whether a pixel centre
+  // of the box is inside, from the edge functions there (exact in double: below 2^51).
+  // If none is, the triangle covers nothing and is not binned.
+  const bool centre_only = ctx.centre_sample_only();
+  const V box_dx = hn::Min(hn::Sub(bx1, bx0), hn::Set(d, 1.0));  // 0 or 1 in a small box
+  const V box_dy = hn::Min(hn::Sub(by1, by0), hn::Set(d, 1.0));
+  auto in00 = hn::Eq(zero, zero), in10 = in00, in01 = in00, in11 = in00;
+  for (int k = 0; k < 3; ++k) {
+    const int from = (k + 1) % 3, to = (k + 2) % 3;
+    const V dx = hn::Sub(X[to], X[from]), dy = hn::Sub(Y[to], Y[from]);
+    const auto top_left = hn::Or(hn::Lt(dy, zero), hn::And(hn::Eq(dy, zero), hn::Gt(dx, zero)));
+    const V bias = hn::IfThenElseZero(hn::Not(top_left), hn::Set(d, 1.0));
+    hn::Store(hn::Neg(dy), d, out.a[k] + l0);
+    hn::Store(dx, d, out.b[k] + l0);
+    const V c = hn::Sub(hn::Sub(hn::Mul(dy, X[from]), hn::Mul(dx, Y[from])), bias);
+    hn::Store(c, d, out.c[k] + l0);
+    if (centre_only) {
+      const V e00 = hn::Add(hn::Sub(c, hn::Mul(dy, cx)), hn::Mul(dx, cy));
+      const V e10 = hn::Sub(e00, hn::Mul(hn::Mul(dy, hn::Set(d, scale)), box_dx));
+      const V e01 = hn::Add(e00, hn::Mul(hn::Mul(dx, hn::Set(d, scale)), box_dy));
+      const V e11 = hn::Add(e10, hn::Sub(e01, e00));
+      in00 = hn::And(in00, hn::Ge(e00, zero));
+      in10 = hn::And(in10, hn::Ge(e10, zero));
+      in01 = hn::And(in01, hn::Ge(e01, zero));
+      in11 = hn::And(in11, hn::Ge(e11, zero));
+    }
+    max_step = hn::Max(max_step, hn::Add(hn::Abs(dy), hn::Abs(dx)));
+    max_delta = hn::Max(max_delta, hn::Max(hn::Abs(dy), hn::Abs(dx)));
+    weight0[k] = hn::Mul(
+        hn::Sub(hn::Mul(dx, hn::Sub(cy, Y[from])), hn::Mul(dy, hn::Sub(cx, X[from]))), inv_area);
+    wdx[k] = hn::Mul(hn::Neg(dy), per_pixel);
+    wdy[k] = hn::Mul(dx, per_pixel);
+  }
+  hn::Store(as_double_mask(
+                d, hn::Lt(max_step,
+                          hn::Set(d, static_cast<double>(narrow_edge_limit(ctx.subpixel_bits))))),
+            d, out.narrow + l0);
+  hn::Store(as_double_mask(d, hn::Lt(max_delta, hn::Set(d, 32.0 * scale))), d, out.small + l0);
+  V centres = zero;  // TriangleSetup::centres
+  if (centre_only) {
+    const auto small_box = hn::And(hn::Le(hn::Sub(bx1, bx0), hn::Set(d, 1.0)),
+                                   hn::Le(hn::Sub(by1, by0), hn::Set(d, 1.0)));
+    const auto covered = hn::Or(hn::Or(in00, in10), hn::Or(in01, in11));
+    any_sample = hn::And(any_sample, hn::Or(hn::Not(small_box), covered));
+    // In a box one pixel wide or high, the second column's or row's values repeat the first's.
+    const auto two_x = hn::Gt(box_dx, zero), two_y = hn::Gt(box_dy, zero);
+    const auto bit = [&](auto m, double value) { return hn::IfThenElseZero(m, hn::Set(d, value)); };
+    centres = hn::Add(
+        hn::Add(bit(in00, 1.0), bit(hn::And(in10, two_x), 2.0)),
+        hn::Add(bit(hn::And(in01, two_y), 16.0), bit(hn::And(in11, hn::And(two_x, two_y)), 32.0)));
+    centres = hn::IfThenElseZero(small_box, centres);
+  }
+  hn::Store(centres, d, out.centres + l0);
+  hn::Store(as_double_mask(d, any_sample), d, out.any_sample + l0);
+
+  auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {
+    hn::Store(
+        hn::Add(hn::Add(hn::Mul(weight0[0], v0), hn::Mul(weight0[1], v1)), hn::Mul(weight0[2], v2)),
+        d, at0 + l0);
+    hn::Store(hn::Add(hn::Add(hn::Mul(wdx[0], v0), hn::Mul(wdx[1], v1)), hn::Mul(wdx[2], v2)), d,
+              gx + l0);
+    hn::Store(hn::Add(hn::Add(hn::Mul(wdy[0], v0), hn::Mul(wdy[1], v1)), hn::Mul(wdy[2], v2)), d,
+              gy + l0);
+  };
+  plane(Z[0], Z[1], Z[2], out.z0, out.z_dx, out.z_dy);
+  const V one = hn::Set(d, 1.0);
+  hn::Store(hn::Min(hn::Max(hn::Min(hn::Min(Z[0], Z[1]), Z[2]), zero), one), d, out.z_min + l0);
+  hn::Store(hn::Min(hn::Max(hn::Max(hn::Max(Z[0], Z[1]), Z[2]), zero), one), d, out.z_max + l0);
+
+  const bool affine = p.interpolation == Interpolation::kAffine;
+  const auto flat =
+      affine ? hn::Eq(zero, zero) : hn::And(hn::Eq(IW[0], IW[1]), hn::Eq(IW[1], IW[2]));
+  hn::Store(as_double_mask(d, flat), d, out.flat_q + l0);
+  const V q_max = hn::Max(hn::Max(IW[0], IW[1]), IW[2]);
+  V q[3];
+  for (int k = 0; k < 3; ++k)
+    q[k] = kUnitW ? one : hn::IfThenElse(flat, one, hn::Div(IW[k], q_max));
+  plane(q[0], q[1], q[2], out.q0, out.q_dx, out.q_dy);
+  for (int c = 0; c < 4; ++c) {
+    plane(hn::Mul(q[0], C[0][c]), hn::Mul(q[1], C[1][c]), hn::Mul(q[2], C[2][c]), out.qa0[c],
+          out.qa_dx[c], out.qa_dy[c]);
+  }
+  PackLanes(d, l0, out);
 }
 
 void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
@@ -313,16 +308,16 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
   const hn::Rebind<float, decltype(d)> df;
   const auto one = hn::Set(df, 1.0f);
   for (size_t l0 = 0; l0 < lanes_used; l0 += hn::Lanes(d)) {
+    hn::Vec<decltype(df)> pos[3][4];  // x, y, z, w of each vertex
     auto unit_w = hn::Eq(one, one);
     for (int k = 0; k < 3; ++k) {
-      hn::Vec<decltype(df)> x, y, z, w;
-      hn::LoadInterleaved4(df, &in.position[k][l0].x, x, y, z, w);
-      unit_w = hn::And(unit_w, hn::Eq(w, one));
+      hn::LoadInterleaved4(df, &in.position[k][l0].x, pos[k][0], pos[k][1], pos[k][2], pos[k][3]);
+      unit_w = hn::And(unit_w, hn::Eq(pos[k][3], one));
     }
     if (hn::AllTrue(df, unit_w)) {
-      SetupLaneGroup<true>(ctx, in, l0, out);
+      SetupLaneGroup<true>(ctx, in, pos, l0, out);
     } else {
-      SetupLaneGroup<false>(ctx, in, l0, out);
+      SetupLaneGroup<false>(ctx, in, pos, l0, out);
     }
   }
 }
@@ -343,12 +338,11 @@ HWY_INLINE bool batch_finite(const Batch& batch, size_t lanes) {
   return hn::AllTrue(df, finite);
 }
 
-// The bin tiles of a setup's bounding box.
-HWY_INLINE binning::TileRect tile_rect(const TriangleSetup& s, uint32_t log2) {
-  return {static_cast<uint16_t>(static_cast<uint32_t>(s.x0) >> log2),
-          static_cast<uint16_t>(static_cast<uint32_t>(s.y0) >> log2),
-          static_cast<uint16_t>(static_cast<uint32_t>(s.x1) >> log2),
-          static_cast<uint16_t>(static_cast<uint32_t>(s.y1) >> log2)};
+// The bin tiles of a bounding box's pixels x0..x1, y0..y1 (on screen: not negative).
+HWY_INLINE binning::TileRect tile_rect(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1,
+                                       uint32_t log2) {
+  return {static_cast<uint16_t>(x0 >> log2), static_cast<uint16_t>(y0 >> log2),
+          static_cast<uint16_t>(x1 >> log2), static_cast<uint16_t>(y1 >> log2)};
 }
 
 // Streams 16 bytes (a record's piece) from `from` to `to`, 16-byte aligned: the records are
@@ -411,7 +405,10 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         }
         setup_triangle(ctx, position, attribute, setups, counters);
         for (size_t i = next; i < setups.size(); ++i)
-          bins.record(tile_rect(setups[i], ctx.bin_tile_log2));
+          bins.record(tile_rect(static_cast<uint32_t>(setups[i].x0),
+                                static_cast<uint32_t>(setups[i].y0),
+                                static_cast<uint32_t>(setups[i].x1),
+                                static_cast<uint32_t>(setups[i].y1), ctx.bin_tile_log2));
         next = setups.size();
         setups.resize(next + used - l - 1);
         continue;
@@ -430,11 +427,9 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         stream_piece(out.wide[k] + 2 * l, record + 16 * k);
       for (int k = 0; k < 8; ++k)
         stream_piece(out.words[k] + 4 * l, record + 32 + 16 * k);
-      const uint32_t log2 = ctx.bin_tile_log2;
-      bins.record({static_cast<uint16_t>(static_cast<uint32_t>(out.x0[l]) >> log2),
-                   static_cast<uint16_t>(static_cast<uint32_t>(out.y0[l]) >> log2),
-                   static_cast<uint16_t>(static_cast<uint32_t>(out.x1[l]) >> log2),
-                   static_cast<uint16_t>(static_cast<uint32_t>(out.y1[l]) >> log2)});
+      bins.record(tile_rect(static_cast<uint32_t>(out.x0[l]), static_cast<uint32_t>(out.y0[l]),
+                            static_cast<uint32_t>(out.x1[l]), static_cast<uint32_t>(out.y1[l]),
+                            ctx.bin_tile_log2));
     }
     setups.resize(next);
   }
