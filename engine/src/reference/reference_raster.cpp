@@ -180,14 +180,15 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
       if (first_passed < 0 || !pipeline.color_write) continue;
 
       // Shade once per pixel, at the pixel centre (at the first passing sample when the centre
-      // lies beyond the triangle's horizon), and store to every sample that passed.
+      // lies beyond the triangle's horizon: inside the triangle 1/w is positive), and store to
+      // every sample that passed.
       std::array<float, 4> color{};
       const int64_t cx = (px * 16 + 8) << shift;
       const int64_t cy = (py * 16 + 8) << shift;
       if (!interpolate_color(v, area, cx, cy, attribute_count, pipeline.interpolation, color)) {
         const auto& o = pattern[first_passed];
         interpolate_color(v, area, (px * 16 + 8 + o.dx) << shift, (py * 16 + 8 + o.dy) << shift,
-                          attribute_count, Interpolation::kAffine, color);
+                          attribute_count, pipeline.interpolation, color);
       }
       for (uint32_t s = 0; s < samples; ++s) {
         if (passed[s]) {
