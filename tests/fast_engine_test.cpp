@@ -266,14 +266,35 @@ TEST(FastEngine, TrianglesBetweenSamplesAreRasterizedWithoutBinning) {
   }
 }
 
+TEST(FastEngine, MultisampleTrianglesBetweenSamplesAreNotBinned) {
+  // At four samples this triangle's box is pixel (10, 10), whose first sample (10.375, 10.125)
+  // lies inside the vertices' box but not inside the triangle, and no other sample of the
+  // pixel is in the box: the setup finds no covered sample (TriangleSetup::sample_bits), so
+  // the triangle is rasterized (not culled) and not binned.
+  Scene s;
+  const float x[3] = {10.45f, 10.3f, 10.45f}, y[3] = {10.2f, 10.2f, 10.1f};
+  const float z[3] = {0.5f, 0.5f, 0.5f}, w[3] = {1, 1, 1}, c[3][4] = {};
+  s.add(x, y, z, w, c);
+  s.samples = 4;
+  const Result ref = render(s, Backend::kReference);
+  EXPECT_EQ(ref.counters.samples_covered, 0u);
+  for_each_config([&](const Config& config) {
+    const Result fast = render(s, Backend::kFast, config);
+    expect_same_coverage(fast, ref, "");
+    EXPECT_EQ(fast.counters.triangles_rasterized, 1u);
+    EXPECT_EQ(fast.counters.bin_references, 0u);
+  });
+}
+
 TEST(FastEngine, TinyTrianglesMatchReferenceInEveryDrawState) {
-  // Triangles of about 1.5 pixels, at one, two and four samples: at one sample most have a box
-  // of at most 2x2 pixels, whose covered pixel centres the setup finds and the kernel draws one
-  // by one (TriangleSetup::centres). Each triangle has its own constant depth, increasing with
-  // submission by 2^-15, far more than the depth tolerance, so every depth decision is the
-  // reference's and each sample's depth names the triangle that wrote it. (The depths are not bit
-  // for bit the reference's: z / w of a perspective vertex is not exactly z, and the planes round
-  // in float.) Float colour at one sample only, as in ColorWithinOneStepOfReference: with several
+  // Triangles of about 1.5 pixels, at one, two and four samples: most have a box of at most
+  // 2x2 pixels, whose covered pixel centres (one sample: TriangleSetup::centres) or samples
+  // (two and four: TriangleSetup::sample_bits) the setup finds and the kernel draws one by one.
+  // Each triangle has its own constant depth, increasing with submission by
+  // 2^-15, far more than the depth tolerance, so every depth decision is the reference's and
+  // each sample's depth names the triangle that wrote it. (The depths are not bit for bit the
+  // reference's: z / w of a perspective vertex is not exactly z, and the planes round in
+  // float.) Float colour at one sample only, as in ColorWithinOneStepOfReference: with several
   // samples, a pixel centre outside a tiny perspective triangle extrapolates colour far outside
   // [0, 1], where the float planes' error is relative to the value.
   struct State {

@@ -999,6 +999,111 @@ HWY_INLINE void raster_centres(const TileContext& tc, const TriangleSetup& t, ui
   }
 }
 
+// Two or four samples per pixel, and a triangle whose box is at most 2x2 pixels: its covered
+// samples (`sample_bits`, bit ((y - y0) * 2 + (x - x0)) * samples + s) in this tile are
+// depth-tested one by one and each pixel with a passing sample shaded once, with no lanes to
+// fill. Each value is the float sum raster_block forms for that sample or pixel (plane bases
+// at the block's first pixel, then the offsets, in the same order), clamped, rounded and
+// compared as its lanes are, so the bytes are the same.
+template <DepthMode kDepth, ColorMode kColor, bool kCount>
+HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
+  const uint32_t samples = tc.samples;
+  const uint32_t pixel_samples = (1u << samples) - 1;
+  uint32_t pixels = 0;  // bit p: pixel p has a covered sample
+  for (uint32_t p = 0; p < 4; ++p)
+    pixels |= ((t.sample_bits >> (p * samples)) & pixel_samples) != 0 ? 1u << p : 0u;
+  uint32_t covered = 0, passed = 0, shaded = 0, blocks = 0;  // blocks as raster_centres'
+  for (; pixels != 0; pixels &= pixels - 1) {
+    const uint32_t p = static_cast<uint32_t>(std::countr_zero(pixels));
+    const int32_t x = t.x0 + static_cast<int32_t>(p & 1), y = t.y0 + static_cast<int32_t>(p >> 1);
+    if (x < tc.x0 || x > tc.x1 || y < tc.y0 || y > tc.y1) continue;  // another tile's
+    const uint32_t cov = (t.sample_bits >> (p * samples)) & pixel_samples;
+    const int32_t bx = x >> 3, by = y >> 3;
+    const size_t block =
+        static_cast<size_t>(((y - tc.tile_y0) >> 3) * kBlocksPerTileSide + ((x - tc.tile_x0) >> 3));
+    const size_t index = block * 64 + static_cast<size_t>((y & 7) * 8 + (x & 7));
+    const float fx = static_cast<float>(x & 7), fy = static_cast<float>(y & 7);
+    const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;  // as compute_bases
+    if constexpr (kCount) {
+      covered += static_cast<uint32_t>(std::popcount(cov));
+      blocks |= 1u << (((by - (t.y0 >> 3)) << 1) + (bx - (t.x0 >> 3)));
+    }
+    uint32_t pass = cov;
+    if constexpr (kDepth != DepthMode::kOff) {
+      const float z_base = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
+      const float z_rel = fx * t.z_dx + fy * t.z_dy;
+      pass = 0;
+      for (uint32_t rest = cov; rest != 0; rest &= rest - 1) {
+        const uint32_t s = static_cast<uint32_t>(std::countr_zero(rest));
+        // set_up_state's offset, then raster_block's sum.
+        const float z_offset = t.z_dx * tc.sample_fx[s] + t.z_dy * tc.sample_fy[s];
+        float z = (z_base + z_offset) + z_rel;
+        z = z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;  // hn::Min(hn::Max(z, 0), 1)
+        if (tc.depth_scale > 0.0f) z = std::nearbyint(z * tc.depth_scale);
+        float& stored = tc.depth[s * kSamplePlane + index];
+        const bool passes = detail::depth_passes(tc.compare, z, stored);
+        pass |= passes ? 1u << s : 0u;
+        if constexpr (kDepth == DepthMode::kTestWrite) stored = passes ? z : stored;
+      }
+      if (pass == 0) continue;
+      if constexpr (kDepth == DepthMode::kTestWrite) mark_hiz_dirty(tc, block);
+    }
+    if constexpr (kCount) passed += static_cast<uint32_t>(std::popcount(pass));
+    if constexpr (kColor != ColorMode::kOff) {
+      if constexpr (kCount) ++shaded;
+      const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
+      float qa_base[4], channel[4];
+      for (int c = 0; c < 4; ++c) {
+        qa_base[c] = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
+        channel[c] = qa_base[c] + (fx * t.qa_dx[c] + fy * t.qa_dy[c]);
+      }
+      if (!t.flat_q) {
+        const float q_base = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
+        const float q = q_base + (fx * t.q_dx + fy * t.q_dy);
+        if (q > 0.0f) {
+          const float inv_q = 1.0f / q;
+          for (float& v : channel)
+            v *= inv_q;
+        } else {
+          // Beyond the horizon at the centre: raster_block evaluates at the pixel's first
+          // passing sample, which is inside the triangle.
+          const uint32_t s = static_cast<uint32_t>(std::countr_zero(pass));
+          const float sx = fx + tc.sample_fx[s], sy = fy + tc.sample_fy[s];
+          const float qs = q_base + (t.q_dx * sx + t.q_dy * sy);
+          for (int c = 0; c < 4; ++c)
+            channel[c] = (qa_base[c] + (t.qa_dx[c] * sx + t.qa_dy[c] * sy)) / qs;
+        }
+      }
+      if constexpr (kColor == ColorMode::kRGBA8) {
+        const uint32_t packed = uint32_t{tessera::to_unorm8(channel[0])} |
+                                uint32_t{tessera::to_unorm8(channel[1])} << 8 |
+                                uint32_t{tessera::to_unorm8(channel[2])} << 16 |
+                                uint32_t{tessera::to_unorm8(channel[3])} << 24;
+        uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + index;
+        for (uint32_t rest = pass; rest != 0; rest &= rest - 1)
+          colour[std::countr_zero(rest) * kSamplePlane] = packed;
+      } else {
+        for (uint32_t rest = pass; rest != 0; rest &= rest - 1) {
+          std::copy(channel, channel + 4,
+                    tc.rgba32f + (std::countr_zero(rest) * kSamplePlane + index) * 4);
+        }
+      }
+    }
+  }
+  if constexpr (kCount) {
+    // The blocks of the box in this tile, counted as raster_centres counts them.
+    const int32_t bx0 = std::max(t.x0, tc.x0) >> 3, bx1 = std::min(t.x1, tc.x1) >> 3;
+    const int32_t by0 = std::max(t.y0, tc.y0) >> 3, by1 = std::min(t.y1, tc.y1) >> 3;
+    const uint32_t partial = static_cast<uint32_t>(std::popcount(blocks));
+    counters.blocks_partial += partial;
+    counters.blocks_rejected +=
+        static_cast<uint32_t>(std::max(bx1 - bx0 + 1, 0) * std::max(by1 - by0 + 1, 0)) - partial;
+    counters.samples_covered += covered;
+    counters.samples_passed += passed;
+    counters.pixels_shaded += shaded;
+  }
+}
+
 // One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
 // counters in; without it the kernel carries no counting code at all. Small triangles whose
 // bounding box spans 16 px or more test Hi-Z per block (below that, recomputing the bounds of
@@ -1008,6 +1113,8 @@ template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
 void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
   if (!kMulti && t.centres != 0) {
     raster_centres<kDepth, kColor, kCount>(tc, t, t.centres, counters);
+  } else if (kMulti && t.sample_bits != 0) {
+    raster_samples<kDepth, kColor, kCount>(tc, t, counters);
   } else if (!kMulti && t.small && t.x1 - t.x0 < kCentresBox && t.y1 - t.y0 < kCentresBox) {
     raster_centres<kDepth, kColor, kCount>(tc, t, centres_inside(tc, t), counters);
   } else if (!t.small) {

@@ -135,6 +135,11 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
   ctx.check_finite = check_finite;
   ctx.bin_tile_log2 = grid.size_log2;
+  ctx.samples = samples;
+  for (uint32_t s = 0; s < samples; ++s) {
+    ctx.sample_dx[s] = pattern[s].dx;
+    ctx.sample_dy[s] = pattern[s].dy;
+  }
   ctx.sample_dx_lo = ctx.sample_dx_hi = pattern[0].dx;
   ctx.sample_dy_lo = ctx.sample_dy_hi = pattern[0].dy;
   for (const SampleOffset& o : pattern) {

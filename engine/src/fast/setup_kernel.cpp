@@ -44,7 +44,8 @@ struct Out {
   alignas(64) double inside[kMaxLanes], keep[kMaxLanes], any_sample[kMaxLanes];
   alignas(64) double x0[kMaxLanes], y0[kMaxLanes], x1[kMaxLanes], y1[kMaxLanes];
   alignas(64) double a[3][kMaxLanes], b[3][kMaxLanes], c[3][kMaxLanes];
-  alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes], centres[kMaxLanes];
+  alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes], centres[kMaxLanes],
+      sample_bits[kMaxLanes];
   alignas(64) double z0[kMaxLanes], z_dx[kMaxLanes], z_dy[kMaxLanes], z_min[kMaxLanes],
       z_max[kMaxLanes];
   alignas(64) double q0[kMaxLanes], q_dx[kMaxLanes], q_dy[kMaxLanes];
@@ -103,7 +104,7 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
   put(5, f32(out.qa0[2]), f32(out.qa0[3]), f32(out.qa_dx[0]), f32(out.qa_dx[1]));
   put(6, f32(out.qa_dx[2]), f32(out.qa_dx[3]), f32(out.qa_dy[0]), f32(out.qa_dy[1]));
   const auto zero = hn::Zero(du);
-  put(7, f32(out.qa_dy[2]), f32(out.qa_dy[3]), zero, zero);
+  put(7, f32(out.qa_dy[2]), f32(out.qa_dy[3]), i32(out.sample_bits), zero);
 }
 
 // One vector of lanes from l0, whose vertices' positions `pos` holds as x, y, z, w vectors.
@@ -220,11 +221,14 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   V max_step = zero, max_delta = zero;
   // One sample per pixel and a bounding box of at most 2x2 pixels: whether a pixel centre
   // of the box is inside, from the edge functions there (exact in double: below 2^51).
-  // If none is, the triangle covers nothing and is not binned.
+  // Two or four samples and such a box: which samples are inside, from the same values plus
+  // each sample's offset. If none is, the triangle covers nothing and is not binned.
   const bool centre_only = ctx.centre_sample_only();
+  const bool sample_bits = ctx.small_sample_bits();
   const V box_dx = hn::Min(hn::Sub(bx1, bx0), hn::Set(d, 1.0));  // 0 or 1 in a small box
   const V box_dy = hn::Min(hn::Sub(by1, by0), hn::Set(d, 1.0));
   auto in00 = hn::Eq(zero, zero), in10 = in00, in01 = in00, in11 = in00;
+  V edge_at[3][4], edge_dx[3], edge_dy[3];  // sample_bits: the edges at the box's centres
   for (int k = 0; k < 3; ++k) {
     const int from = (k + 1) % 3, to = (k + 2) % 3;
     const V dx = hn::Sub(X[to], X[from]), dy = hn::Sub(Y[to], Y[from]);
@@ -234,15 +238,24 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     hn::Store(dx, d, out.b[k] + l0);
     const V c = hn::Sub(hn::Sub(hn::Mul(dy, X[from]), hn::Mul(dx, Y[from])), bias);
     hn::Store(c, d, out.c[k] + l0);
-    if (centre_only) {
+    if (centre_only || sample_bits) {
       const V e00 = hn::Add(hn::Sub(c, hn::Mul(dy, cx)), hn::Mul(dx, cy));
       const V e10 = hn::Sub(e00, hn::Mul(hn::Mul(dy, hn::Set(d, scale)), box_dx));
       const V e01 = hn::Add(e00, hn::Mul(hn::Mul(dx, hn::Set(d, scale)), box_dy));
       const V e11 = hn::Add(e10, hn::Sub(e01, e00));
-      in00 = hn::And(in00, hn::Ge(e00, zero));
-      in10 = hn::And(in10, hn::Ge(e10, zero));
-      in01 = hn::And(in01, hn::Ge(e01, zero));
-      in11 = hn::And(in11, hn::Ge(e11, zero));
+      if (centre_only) {
+        in00 = hn::And(in00, hn::Ge(e00, zero));
+        in10 = hn::And(in10, hn::Ge(e10, zero));
+        in01 = hn::And(in01, hn::Ge(e01, zero));
+        in11 = hn::And(in11, hn::Ge(e11, zero));
+      } else {
+        edge_at[k][0] = e00;
+        edge_at[k][1] = e10;
+        edge_at[k][2] = e01;
+        edge_at[k][3] = e11;
+        edge_dx[k] = dx;
+        edge_dy[k] = dy;
+      }
     }
     max_step = hn::Max(max_step, hn::Add(hn::Abs(dy), hn::Abs(dx)));
     max_delta = hn::Max(max_delta, hn::Max(hn::Abs(dy), hn::Abs(dx)));
@@ -271,6 +284,34 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     centres = hn::IfThenElseZero(small_box, centres);
   }
   hn::Store(centres, d, out.centres + l0);
+  V sample_mask = zero;  // TriangleSetup::sample_bits
+  if (sample_bits) {
+    // Sample s of a box pixel is inside edge k when E(centre) + a dx_s + b dy_s >= 0, with
+    // a = -dy, b = dx: E(centre) >= dy dx_s - dx dy_s (exact: products below 2^51).
+    const uint32_t samples = ctx.samples;
+    const auto small_box = hn::And(hn::Le(hn::Sub(bx1, bx0), hn::Set(d, 1.0)),
+                                   hn::Le(hn::Sub(by1, by0), hn::Set(d, 1.0)));
+    const auto two_x = hn::Gt(box_dx, zero), two_y = hn::Gt(box_dy, zero);
+    const decltype(two_x) pixel_in_box[4] = {small_box, hn::And(small_box, two_x),
+                                             hn::And(small_box, two_y),
+                                             hn::And(small_box, hn::And(two_x, two_y))};
+    for (uint32_t s = 0; s < samples; ++s) {
+      const V sx = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dx[s]} << shift));
+      const V sy = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dy[s]} << shift));
+      V least[3];
+      for (int k = 0; k < 3; ++k)
+        least[k] = hn::Sub(hn::Mul(edge_dy[k], sx), hn::Mul(edge_dx[k], sy));
+      for (uint32_t px = 0; px < 4; ++px) {
+        const auto covered =
+            hn::And(hn::And(pixel_in_box[px], hn::Ge(edge_at[0][px], least[0])),
+                    hn::And(hn::Ge(edge_at[1][px], least[1]), hn::Ge(edge_at[2][px], least[2])));
+        const double bit = static_cast<double>(1u << (px * samples + s));
+        sample_mask = hn::Add(sample_mask, hn::IfThenElseZero(covered, hn::Set(d, bit)));
+      }
+    }
+    any_sample = hn::And(any_sample, hn::Or(hn::Not(small_box), hn::Gt(sample_mask, zero)));
+  }
+  hn::Store(sample_mask, d, out.sample_bits + l0);
   hn::Store(as_double_mask(d, any_sample), d, out.any_sample + l0);
 
   auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {

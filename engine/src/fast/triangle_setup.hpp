@@ -52,7 +52,11 @@ struct TriangleSetup {
   float q_dx, q_dy;
   std::array<float, 4> qa0;
   std::array<float, 4> qa_dx, qa_dy;
-  uint32_t unused[2];  // to 160 bytes: five 32-byte pieces (setup_kernel.cpp streams them)
+  // Two or four samples per pixel and a bounding box of at most 2x2 pixels: which samples are
+  // inside, bit ((y - y0) * 2 + (x - x0)) * samples + s, from exact edge functions. 0 when not
+  // known (any other triangle): the kernel then tests the edges itself.
+  uint32_t sample_bits;
+  uint32_t unused;  // to 160 bytes: five 32-byte pieces (setup_kernel.cpp streams them)
 };
 
 // Setups of one worker's range of a draw (large: see aligned_allocator.hpp). The vectorized
@@ -61,7 +65,7 @@ static_assert(std::is_trivially_default_constructible_v<TriangleSetup>);
 static_assert(sizeof(TriangleSetup) == 160 && offsetof(TriangleSetup, a) == 32 &&
               offsetof(TriangleSetup, x0) == 56 && offsetof(TriangleSetup, narrow) == 72 &&
               offsetof(TriangleSetup, z_dx) == 76 && offsetof(TriangleSetup, qa0) == 104 &&
-              offsetof(TriangleSetup, unused) == 152);
+              offsetof(TriangleSetup, sample_bits) == 152);
 using SetupList = detail::UninitializedVector<TriangleSetup>;
 
 struct SetupContext {
@@ -76,6 +80,9 @@ struct SetupContext {
   // triangle's. The defaults hold every pattern.
   int32_t sample_dx_lo = -8, sample_dx_hi = 8;
   int32_t sample_dy_lo = -8, sample_dy_hi = 8;
+  // The samples per pixel and their offsets in 1/16 pixel, for TriangleSetup::sample_bits.
+  uint32_t samples = 1;
+  std::array<int32_t, 16> sample_dx{}, sample_dy{};
   // The draw's positions and colours were not checked for NaN and infinity: the vectorized
   // setup checks each batch it reads (setup_kernel.hpp).
   bool check_finite = false;
@@ -86,6 +93,8 @@ struct SetupContext {
   bool centre_sample_only() const {
     return sample_dx_lo == 0 && sample_dx_hi == 0 && sample_dy_lo == 0 && sample_dy_hi == 0;
   }
+  // Whether small triangles' setups carry TriangleSetup::sample_bits.
+  bool small_sample_bits() const { return samples == 2 || samples == 4; }
 };
 
 // Sets up one input triangle through the clipper shared with the reference: clip-space
