@@ -999,8 +999,8 @@ HWY_INLINE void raster_centres(const TileContext& tc, const TriangleSetup& t, ui
   }
 }
 
-// Two or four samples per pixel, and a triangle whose box is at most 2x2 pixels: its covered
-// samples (`sample_bits`, bit ((y - y0) * 2 + (x - x0)) * samples + s) in this tile are
+// Two or four samples per pixel, and a triangle whose box is at most 3x3 pixels: its covered
+// samples (`sample_bits`, bit ((y - y0) * 3 + (x - x0)) * samples + s) in this tile are
 // depth-tested one by one and each pixel with a passing sample shaded once, with no lanes to
 // fill. Each value is the float sum raster_block forms for that sample or pixel (plane bases
 // at the block's first pixel, then the offsets, in the same order), clamped, rounded and
@@ -1010,12 +1010,12 @@ HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Co
   const uint32_t samples = tc.samples;
   const uint32_t pixel_samples = (1u << samples) - 1;
   uint32_t pixels = 0;  // bit p: pixel p has a covered sample
-  for (uint32_t p = 0; p < 4; ++p)
+  for (uint32_t p = 0; p < 32 / samples && p < 9; ++p)
     pixels |= ((t.sample_bits >> (p * samples)) & pixel_samples) != 0 ? 1u << p : 0u;
   uint32_t covered = 0, passed = 0, shaded = 0, blocks = 0;  // blocks as raster_centres'
   for (; pixels != 0; pixels &= pixels - 1) {
     const uint32_t p = static_cast<uint32_t>(std::countr_zero(pixels));
-    const int32_t x = t.x0 + static_cast<int32_t>(p & 1), y = t.y0 + static_cast<int32_t>(p >> 1);
+    const int32_t x = t.x0 + static_cast<int32_t>(p % 3), y = t.y0 + static_cast<int32_t>(p / 3);
     if (x < tc.x0 || x > tc.x1 || y < tc.y0 || y > tc.y1) continue;  // another tile's
     const uint32_t cov = (t.sample_bits >> (p * samples)) & pixel_samples;
     const int32_t bx = x >> 3, by = y >> 3;

@@ -221,14 +221,15 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   V max_step = zero, max_delta = zero;
   // One sample per pixel and a bounding box of at most 2x2 pixels: whether a pixel centre
   // of the box is inside, from the edge functions there (exact in double: below 2^51).
-  // Two or four samples and such a box: which samples are inside, from the same values plus
-  // each sample's offset. If none is, the triangle covers nothing and is not binned.
+  // Two or four samples and a box of at most 3x3 pixels (TriangleSetup::sample_bits): which
+  // samples are inside, from the same values plus each sample's offset. If none is, the
+  // triangle covers nothing and is not binned.
   const bool centre_only = ctx.centre_sample_only();
   const bool sample_bits = ctx.small_sample_bits();
   const V box_dx = hn::Min(hn::Sub(bx1, bx0), hn::Set(d, 1.0));  // 0 or 1 in a small box
   const V box_dy = hn::Min(hn::Sub(by1, by0), hn::Set(d, 1.0));
   auto in00 = hn::Eq(zero, zero), in10 = in00, in01 = in00, in11 = in00;
-  V edge_at[3][4], edge_dx[3], edge_dy[3];  // sample_bits: the edges at the box's centres
+  V edge_at[3], edge_dx[3], edge_dy[3];  // sample_bits: at the first pixel centre, the deltas
   for (int k = 0; k < 3; ++k) {
     const int from = (k + 1) % 3, to = (k + 2) % 3;
     const V dx = hn::Sub(X[to], X[from]), dy = hn::Sub(Y[to], Y[from]);
@@ -240,19 +241,16 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     hn::Store(c, d, out.c[k] + l0);
     if (centre_only || sample_bits) {
       const V e00 = hn::Add(hn::Sub(c, hn::Mul(dy, cx)), hn::Mul(dx, cy));
-      const V e10 = hn::Sub(e00, hn::Mul(hn::Mul(dy, hn::Set(d, scale)), box_dx));
-      const V e01 = hn::Add(e00, hn::Mul(hn::Mul(dx, hn::Set(d, scale)), box_dy));
-      const V e11 = hn::Add(e10, hn::Sub(e01, e00));
       if (centre_only) {
+        const V e10 = hn::Sub(e00, hn::Mul(hn::Mul(dy, hn::Set(d, scale)), box_dx));
+        const V e01 = hn::Add(e00, hn::Mul(hn::Mul(dx, hn::Set(d, scale)), box_dy));
+        const V e11 = hn::Add(e10, hn::Sub(e01, e00));
         in00 = hn::And(in00, hn::Ge(e00, zero));
         in10 = hn::And(in10, hn::Ge(e10, zero));
         in01 = hn::And(in01, hn::Ge(e01, zero));
         in11 = hn::And(in11, hn::Ge(e11, zero));
       } else {
-        edge_at[k][0] = e00;
-        edge_at[k][1] = e10;
-        edge_at[k][2] = e01;
-        edge_at[k][3] = e11;
+        edge_at[k] = e00;
         edge_dx[k] = dx;
         edge_dy[k] = dy;
       }
@@ -287,29 +285,46 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   V sample_mask = zero;  // TriangleSetup::sample_bits
   if (sample_bits) {
     // Sample s of a box pixel is inside edge k when E(centre) + a dx_s + b dy_s >= 0, with
-    // a = -dy, b = dx: E(centre) >= dy dx_s - dx dy_s (exact: products below 2^51).
+    // a = -dy, b = dx: E(centre) >= dy dx_s - dx dy_s (exact: products below 2^51). The box's
+    // pixels are those whose bits fit 32: every 3x3 one at two samples, all but the last at four.
     const uint32_t samples = ctx.samples;
-    const auto small_box = hn::And(hn::Le(hn::Sub(bx1, bx0), hn::Set(d, 1.0)),
-                                   hn::Le(hn::Sub(by1, by0), hn::Set(d, 1.0)));
-    const auto two_x = hn::Gt(box_dx, zero), two_y = hn::Gt(box_dy, zero);
-    const decltype(two_x) pixel_in_box[4] = {small_box, hn::And(small_box, two_x),
-                                             hn::And(small_box, two_y),
-                                             hn::And(small_box, hn::And(two_x, two_y))};
+    const uint32_t pixels = std::min(9u, 32u / samples);
+    const V last_x = hn::Sub(bx1, bx0), last_y = hn::Sub(by1, by0);  // in the box, from 0
+    const V two = hn::Set(d, 2.0);
+    auto fits = hn::And(hn::Le(last_x, two), hn::Le(last_y, two));
+    if (pixels < 9) fits = hn::AndNot(hn::And(hn::Eq(last_x, two), hn::Eq(last_y, two)), fits);
+    V least[3][4];
     for (uint32_t s = 0; s < samples; ++s) {
       const V sx = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dx[s]} << shift));
       const V sy = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dy[s]} << shift));
-      V least[3];
       for (int k = 0; k < 3; ++k)
-        least[k] = hn::Sub(hn::Mul(edge_dy[k], sx), hn::Mul(edge_dx[k], sy));
-      for (uint32_t px = 0; px < 4; ++px) {
-        const auto covered =
-            hn::And(hn::And(pixel_in_box[px], hn::Ge(edge_at[0][px], least[0])),
-                    hn::And(hn::Ge(edge_at[1][px], least[1]), hn::Ge(edge_at[2][px], least[2])));
-        const double bit = static_cast<double>(1u << (px * samples + s));
-        sample_mask = hn::Add(sample_mask, hn::IfThenElseZero(covered, hn::Set(d, bit)));
-      }
+        least[k][s] = hn::Sub(hn::Mul(edge_dy[k], sx), hn::Mul(edge_dx[k], sy));
     }
-    any_sample = hn::And(any_sample, hn::Or(hn::Not(small_box), hn::Gt(sample_mask, zero)));
+    V row[3] = {edge_at[0], edge_at[1], edge_at[2]};
+    for (uint32_t py = 0, pixel = 0; py < 3; ++py) {
+      const auto row_in_box = hn::And(fits, hn::Le(hn::Set(d, static_cast<double>(py)), last_y));
+      V e[3] = {row[0], row[1], row[2]};
+      for (uint32_t px = 0; px < 3 && pixel < pixels; ++px, ++pixel) {
+        const auto in_box =
+            hn::And(row_in_box, hn::Le(hn::Set(d, static_cast<double>(px)), last_x));
+        for (uint32_t s = 0; s < samples; ++s) {
+          const auto covered =
+              hn::And(hn::And(in_box, hn::Ge(e[0], least[0][s])),
+                      hn::And(hn::Ge(e[1], least[1][s]), hn::Ge(e[2], least[2][s])));
+          const double bit = static_cast<double>(1u << (pixel * samples + s));
+          sample_mask = hn::Add(sample_mask, hn::IfThenElseZero(covered, hn::Set(d, bit)));
+        }
+        for (int k = 0; k < 3; ++k)
+          e[k] = hn::Sub(e[k], hn::Mul(edge_dy[k], hn::Set(d, scale)));
+      }
+      for (int k = 0; k < 3; ++k)
+        row[k] = hn::Add(row[k], hn::Mul(edge_dx[k], hn::Set(d, scale)));
+    }
+    any_sample = hn::And(any_sample, hn::Or(hn::Not(fits), hn::Gt(sample_mask, zero)));
+    // As a signed 32-bit value, for PackLanes' conversion: the same bits.
+    const V top = hn::Set(d, 2147483648.0);
+    sample_mask =
+        hn::Sub(sample_mask, hn::IfThenElseZero(hn::Ge(sample_mask, top), hn::Add(top, top)));
   }
   hn::Store(sample_mask, d, out.sample_bits + l0);
   hn::Store(as_double_mask(d, any_sample), d, out.any_sample + l0);

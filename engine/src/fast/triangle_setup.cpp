@@ -131,12 +131,13 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   }
   t.sample_bits = 0;
   t.unused = 0;
-  if (ctx.small_sample_bits() && t.x1 - t.x0 <= 1 && t.y1 - t.y0 <= 1) {
-    // Two or four samples and at most 2x2 pixels: drawn only if a sample is inside, and the
-    // kernel is told which.
+  if (ctx.small_sample_bits() && t.x1 - t.x0 <= 2 && t.y1 - t.y0 <= 2 &&
+      static_cast<uint32_t>((t.y1 - t.y0) * 3 + (t.x1 - t.x0) + 1) * ctx.samples <= 32) {
+    // Two or four samples and at most 3x3 pixels whose samples fit 32 bits: drawn only if a
+    // sample is inside, and the kernel is told which.
     for (int32_t py = t.y0; py <= t.y1; ++py) {
       for (int32_t px = t.x0; px <= t.x1; ++px) {
-        const uint32_t pixel = static_cast<uint32_t>((py - t.y0) * 2 + (px - t.x0));
+        const uint32_t pixel = static_cast<uint32_t>((py - t.y0) * 3 + (px - t.x0));
         for (uint32_t s = 0; s < ctx.samples; ++s) {
           const int64_t sx = (int64_t{px} * 16 + 8 + ctx.sample_dx[s]) << shift;
           const int64_t sy = (int64_t{py} * 16 + 8 + ctx.sample_dy[s]) << shift;
