@@ -916,6 +916,70 @@ HWY_INLINE uint32_t centres_inside(const TileContext& tc, const TriangleSetup& t
   return inside;
 }
 
+// The colour of a pixel drawn one by one (raster_centres, raster_samples): the plane sums
+// raster_block forms for its lane (bases at the block's first pixel, fdx and fdy from the plane
+// origin; then the offset fx, fy to the pixel), divided by q. Beyond the triangle's horizon at
+// the pixel centre (q <= 0), raster_block evaluates at the pixel's first passing sample, at
+// (sample_fx, sample_fy) pixels from the centre, which is inside the triangle.
+HWY_INLINE void pixel_colour(const TriangleSetup& t, float fx, float fy, float fdx, float fdy,
+                             float sample_fx, float sample_fy, float (&channel)[4]) {
+  float qa_base[4];
+  for (int c = 0; c < 4; ++c) {
+    qa_base[c] = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
+    channel[c] = qa_base[c] + (fx * t.qa_dx[c] + fy * t.qa_dy[c]);
+  }
+  if (t.flat_q) return;
+  const float q_base = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
+  const float q = q_base + (fx * t.q_dx + fy * t.q_dy);
+  if (q > 0.0f) {
+    const float inv_q = 1.0f / q;
+    for (float& v : channel)
+      v *= inv_q;
+    return;
+  }
+  const float sx = fx + sample_fx, sy = fy + sample_fy;
+  const float qs = q_base + (t.q_dx * sx + t.q_dy * sy);
+  for (int c = 0; c < 4; ++c)
+    channel[c] = (qa_base[c] + (t.qa_dx[c] * sx + t.qa_dy[c] * sy)) / qs;
+}
+
+// Writes a pixel's colour to its samples in `samples` (bit s: sample s), the pixel's value at
+// `index` in sample plane 0.
+template <ColorMode kColor>
+HWY_INLINE void write_pixel(const TileContext& tc, size_t index, uint32_t samples,
+                            const float (&channel)[4]) {
+  if constexpr (kColor == ColorMode::kRGBA8) {
+    const uint32_t packed = uint32_t{tessera::to_unorm8(channel[0])} |
+                            uint32_t{tessera::to_unorm8(channel[1])} << 8 |
+                            uint32_t{tessera::to_unorm8(channel[2])} << 16 |
+                            uint32_t{tessera::to_unorm8(channel[3])} << 24;
+    uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + index;
+    for (uint32_t rest = samples; rest != 0; rest &= rest - 1)
+      colour[std::countr_zero(rest) * kSamplePlane] = packed;
+  } else {
+    for (uint32_t rest = samples; rest != 0; rest &= rest - 1)
+      std::copy(channel, channel + 4,
+                tc.rgba32f + (std::countr_zero(rest) * kSamplePlane + index) * 4);
+  }
+}
+
+// The counters of a triangle drawn pixel by pixel. The blocks of its box in this tile: those
+// with a covered pixel (`blocks`, bit (by - by0) * 2 + (bx - bx0)) partial, the others rejected
+// (as the small path counts blocks its edges miss).
+HWY_INLINE void count_pixels(const TileContext& tc, const TriangleSetup& t, uint32_t blocks,
+                             uint32_t covered, uint32_t passed, uint32_t shaded,
+                             Counters& counters) {
+  const int32_t bx0 = std::max(t.x0, tc.x0) >> 3, bx1 = std::min(t.x1, tc.x1) >> 3;
+  const int32_t by0 = std::max(t.y0, tc.y0) >> 3, by1 = std::min(t.y1, tc.y1) >> 3;
+  const uint32_t partial = static_cast<uint32_t>(std::popcount(blocks));
+  counters.blocks_partial += partial;
+  counters.blocks_rejected +=
+      static_cast<uint32_t>(std::max(bx1 - bx0 + 1, 0) * std::max(by1 - by0 + 1, 0)) - partial;
+  counters.samples_covered += covered;
+  counters.samples_passed += passed;
+  counters.pixels_shaded += shaded;
+}
+
 // One sample per pixel, and a triangle whose box is at most 3x3 pixels: its covered pixels
 // (`centres`, bit (y - y0) * 4 + (x - x0)) in this tile are drawn one by one, with no lanes to
 // fill. Each value is the float sum raster_block forms for that pixel's lane (plane bases at
@@ -924,7 +988,7 @@ HWY_INLINE uint32_t centres_inside(const TileContext& tc, const TriangleSetup& t
 template <DepthMode kDepth, ColorMode kColor, bool kCount>
 HWY_INLINE void raster_centres(const TileContext& tc, const TriangleSetup& t, uint32_t centres,
                                Counters& counters) {
-  uint32_t covered = 0, passed = 0, blocks = 0;  // blocks: bit (by - by0) * 2 + (bx - bx0)
+  uint32_t covered = 0, passed = 0, blocks = 0;  // as count_pixels takes them
   for (uint32_t bits = centres; bits != 0; bits &= bits - 1) {
     const uint32_t bit = static_cast<uint32_t>(std::countr_zero(bits));
     const int32_t x = t.x0 + static_cast<int32_t>(bit & 3),
@@ -954,48 +1018,13 @@ HWY_INLINE void raster_centres(const TileContext& tc, const TriangleSetup& t, ui
     }
     if constexpr (kCount) ++passed;
     if constexpr (kColor != ColorMode::kOff) {
-      const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
       float channel[4];
-      for (int c = 0; c < 4; ++c) {
-        const float base = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
-        channel[c] = base + (fx * t.qa_dx[c] + fy * t.qa_dy[c]);
-      }
-      if (!t.flat_q) {
-        const float q_base = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
-        const float q = q_base + (fx * t.q_dx + fy * t.q_dy);
-        if (q > 0.0f) {
-          const float inv_q = 1.0f / q;
-          for (float& v : channel)
-            v *= inv_q;
-        } else {
-          // Beyond the horizon: raster_block divides at the pixel's (only) sample, its centre.
-          for (float& v : channel)
-            v /= q;
-        }
-      }
-      if constexpr (kColor == ColorMode::kRGBA8) {
-        reinterpret_cast<uint32_t*>(tc.rgba8)[index] =
-            uint32_t{tessera::to_unorm8(channel[0])} |
-            uint32_t{tessera::to_unorm8(channel[1])} << 8 |
-            uint32_t{tessera::to_unorm8(channel[2])} << 16 |
-            uint32_t{tessera::to_unorm8(channel[3])} << 24;
-      } else {
-        std::copy(channel, channel + 4, tc.rgba32f + index * 4);
-      }
+      pixel_colour(t, fx, fy, static_cast<float>(dx), static_cast<float>(dy), 0.0f, 0.0f, channel);
+      write_pixel<kColor>(tc, index, 1u, channel);
     }
   }
   if constexpr (kCount) {
-    // The blocks of the box in this tile: those with a covered pixel partial, the others
-    // rejected (as the small path counts blocks its edges miss).
-    const int32_t bx0 = std::max(t.x0, tc.x0) >> 3, bx1 = std::min(t.x1, tc.x1) >> 3;
-    const int32_t by0 = std::max(t.y0, tc.y0) >> 3, by1 = std::min(t.y1, tc.y1) >> 3;
-    const uint32_t partial = static_cast<uint32_t>(std::popcount(blocks));
-    counters.blocks_partial += partial;
-    counters.blocks_rejected +=
-        static_cast<uint32_t>(std::max(bx1 - bx0 + 1, 0) * std::max(by1 - by0 + 1, 0)) - partial;
-    counters.samples_covered += covered;
-    counters.samples_passed += passed;
-    counters.pixels_shaded += kColor != ColorMode::kOff ? passed : 0;
+    count_pixels(tc, t, blocks, covered, passed, kColor != ColorMode::kOff ? passed : 0, counters);
   }
 }
 
@@ -1012,7 +1041,7 @@ HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Co
   uint32_t pixels = 0;  // bit p: pixel p has a covered sample
   for (uint32_t p = 0; p < 32 / samples && p < 9; ++p)
     pixels |= ((t.sample_bits >> (p * samples)) & pixel_samples) != 0 ? 1u << p : 0u;
-  uint32_t covered = 0, passed = 0, shaded = 0, blocks = 0;  // blocks as raster_centres'
+  uint32_t covered = 0, passed = 0, shaded = 0, blocks = 0;  // as count_pixels takes them
   for (; pixels != 0; pixels &= pixels - 1) {
     const uint32_t p = static_cast<uint32_t>(std::countr_zero(pixels));
     const int32_t x = t.x0 + static_cast<int32_t>(p % 3), y = t.y0 + static_cast<int32_t>(p / 3);
@@ -1051,57 +1080,14 @@ HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Co
     if constexpr (kCount) passed += static_cast<uint32_t>(std::popcount(pass));
     if constexpr (kColor != ColorMode::kOff) {
       if constexpr (kCount) ++shaded;
-      const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
-      float qa_base[4], channel[4];
-      for (int c = 0; c < 4; ++c) {
-        qa_base[c] = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
-        channel[c] = qa_base[c] + (fx * t.qa_dx[c] + fy * t.qa_dy[c]);
-      }
-      if (!t.flat_q) {
-        const float q_base = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
-        const float q = q_base + (fx * t.q_dx + fy * t.q_dy);
-        if (q > 0.0f) {
-          const float inv_q = 1.0f / q;
-          for (float& v : channel)
-            v *= inv_q;
-        } else {
-          // Beyond the horizon at the centre: raster_block evaluates at the pixel's first
-          // passing sample, which is inside the triangle.
-          const uint32_t s = static_cast<uint32_t>(std::countr_zero(pass));
-          const float sx = fx + tc.sample_fx[s], sy = fy + tc.sample_fy[s];
-          const float qs = q_base + (t.q_dx * sx + t.q_dy * sy);
-          for (int c = 0; c < 4; ++c)
-            channel[c] = (qa_base[c] + (t.qa_dx[c] * sx + t.qa_dy[c] * sy)) / qs;
-        }
-      }
-      if constexpr (kColor == ColorMode::kRGBA8) {
-        const uint32_t packed = uint32_t{tessera::to_unorm8(channel[0])} |
-                                uint32_t{tessera::to_unorm8(channel[1])} << 8 |
-                                uint32_t{tessera::to_unorm8(channel[2])} << 16 |
-                                uint32_t{tessera::to_unorm8(channel[3])} << 24;
-        uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + index;
-        for (uint32_t rest = pass; rest != 0; rest &= rest - 1)
-          colour[std::countr_zero(rest) * kSamplePlane] = packed;
-      } else {
-        for (uint32_t rest = pass; rest != 0; rest &= rest - 1) {
-          std::copy(channel, channel + 4,
-                    tc.rgba32f + (std::countr_zero(rest) * kSamplePlane + index) * 4);
-        }
-      }
+      const uint32_t first = static_cast<uint32_t>(std::countr_zero(pass));
+      float channel[4];
+      pixel_colour(t, fx, fy, static_cast<float>(dx), static_cast<float>(dy), tc.sample_fx[first],
+                   tc.sample_fy[first], channel);
+      write_pixel<kColor>(tc, index, pass, channel);
     }
   }
-  if constexpr (kCount) {
-    // The blocks of the box in this tile, counted as raster_centres counts them.
-    const int32_t bx0 = std::max(t.x0, tc.x0) >> 3, bx1 = std::min(t.x1, tc.x1) >> 3;
-    const int32_t by0 = std::max(t.y0, tc.y0) >> 3, by1 = std::min(t.y1, tc.y1) >> 3;
-    const uint32_t partial = static_cast<uint32_t>(std::popcount(blocks));
-    counters.blocks_partial += partial;
-    counters.blocks_rejected +=
-        static_cast<uint32_t>(std::max(bx1 - bx0 + 1, 0) * std::max(by1 - by0 + 1, 0)) - partial;
-    counters.samples_covered += covered;
-    counters.samples_passed += passed;
-    counters.pixels_shaded += shaded;
-  }
+  if constexpr (kCount) count_pixels(tc, t, blocks, covered, passed, shaded, counters);
 }
 
 // One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
