@@ -916,6 +916,25 @@ HWY_INLINE uint32_t centres_inside(const TileContext& tc, const TriangleSetup& t
   return inside;
 }
 
+// Where pixel (x, y) of this tile lies for a triangle drawn pixel by pixel: its block and
+// value index in the tile's storage, its offset in the block, and its block's first pixel from
+// the plane origin (as compute_bases); block_bit is its block's bit for count_pixels.
+struct PixelSite {
+  PixelSite(const TileContext& tc, const TriangleSetup& t, int32_t x, int32_t y)
+      : block(static_cast<size_t>(((y - tc.tile_y0) >> 3) * kBlocksPerTileSide +
+                                  ((x - tc.tile_x0) >> 3))),
+        index(block * 64 + static_cast<size_t>((y & 7) * 8 + (x & 7))),
+        fx(static_cast<float>(x & 7)),
+        fy(static_cast<float>(y & 7)),
+        dx((x >> 3) * 8.0 - t.x0),
+        dy((y >> 3) * 8.0 - t.y0),
+        block_bit(1u << ((((y >> 3) - (t.y0 >> 3)) << 1) + ((x >> 3) - (t.x0 >> 3)))) {}
+  size_t block, index;
+  float fx, fy;
+  double dx, dy;
+  uint32_t block_bit;
+};
+
 // The colour of a pixel drawn one by one (raster_centres, raster_samples): the plane sums
 // raster_block forms for its lane (bases at the block's first pixel, fdx and fdy from the plane
 // origin; then the offset fx, fy to the pixel), divided by q. Beyond the triangle's horizon at
@@ -994,15 +1013,13 @@ HWY_INLINE void raster_centres(const TileContext& tc, const TriangleSetup& t, ui
     const int32_t x = t.x0 + static_cast<int32_t>(bit & 3),
                   y = t.y0 + static_cast<int32_t>(bit >> 2);
     if (x < tc.x0 || x > tc.x1 || y < tc.y0 || y > tc.y1) continue;  // another tile's
-    const int32_t bx = x >> 3, by = y >> 3;
-    const size_t block =
-        static_cast<size_t>(((y - tc.tile_y0) >> 3) * kBlocksPerTileSide + ((x - tc.tile_x0) >> 3));
-    const size_t index = block * 64 + static_cast<size_t>((y & 7) * 8 + (x & 7));
-    const float fx = static_cast<float>(x & 7), fy = static_cast<float>(y & 7);
-    const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;  // as compute_bases
+    const PixelSite site(tc, t, x, y);
+    const size_t block = site.block, index = site.index;
+    const float fx = site.fx, fy = site.fy;
+    const double dx = site.dx, dy = site.dy;
     if constexpr (kCount) {
       ++covered;
-      blocks |= 1u << (((by - (t.y0 >> 3)) << 1) + (bx - (t.x0 >> 3)));
+      blocks |= site.block_bit;
     }
     if constexpr (kDepth != DepthMode::kOff) {
       const float z_base = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
@@ -1047,15 +1064,13 @@ HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Co
     const int32_t x = t.x0 + static_cast<int32_t>(p % 3), y = t.y0 + static_cast<int32_t>(p / 3);
     if (x < tc.x0 || x > tc.x1 || y < tc.y0 || y > tc.y1) continue;  // another tile's
     const uint32_t cov = (t.sample_bits >> (p * samples)) & pixel_samples;
-    const int32_t bx = x >> 3, by = y >> 3;
-    const size_t block =
-        static_cast<size_t>(((y - tc.tile_y0) >> 3) * kBlocksPerTileSide + ((x - tc.tile_x0) >> 3));
-    const size_t index = block * 64 + static_cast<size_t>((y & 7) * 8 + (x & 7));
-    const float fx = static_cast<float>(x & 7), fy = static_cast<float>(y & 7);
-    const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;  // as compute_bases
+    const PixelSite site(tc, t, x, y);
+    const size_t block = site.block, index = site.index;
+    const float fx = site.fx, fy = site.fy;
+    const double dx = site.dx, dy = site.dy;
     if constexpr (kCount) {
       covered += static_cast<uint32_t>(std::popcount(cov));
-      blocks |= 1u << (((by - (t.y0 >> 3)) << 1) + (bx - (t.x0 >> 3)));
+      blocks |= site.block_bit;
     }
     uint32_t pass = cov;
     if constexpr (kDepth != DepthMode::kOff) {
