@@ -4,7 +4,8 @@
 // scene/bin design, with one bin set per setup worker).
 //
 // The lists live in one flat array, built in two steps (a counting sort): while triangles are
-// set up, each one's tile rectangle is recorded; then place() counts each tile's references
+// set up, each one's tile rectangle and reference (the value its tiles' lists hold for it: an
+// index into the worker's records) are recorded; then place() counts each tile's references
 // and lays them out tile by tile into an array of exactly their number. The
 // memory a bin set holds is therefore known (bytes()) and its user can keep it within a budget.
 #pragma once
@@ -25,8 +26,8 @@ class Bins {
  public:
   // Bytes held per tile of the grid (its count and its list's start), whatever is binned.
   static constexpr uint64_t kBytesPerTile = 2 * sizeof(uint32_t);
-  // Bytes held per binned triangle besides its references (its tile rectangle).
-  static constexpr uint64_t kBytesPerTriangle = sizeof(TileRect);
+  // Bytes held per binned triangle besides its references (its tile rectangle and reference).
+  static constexpr uint64_t kBytesPerTriangle = sizeof(TileRect) + sizeof(uint32_t);
   static constexpr uint64_t kBytesPerReference = sizeof(uint32_t);
 
   // Starts an empty bin set for a grid of `tiles_x` x `tile_count / tiles_x` tiles (allocated
@@ -36,20 +37,26 @@ class Bins {
     counts_.assign(tile_count, 0);
     starts_.resize(size_t{tile_count} + 1);
     rects_.clear();
+    refs_.clear();
     lists_.clear();
     references_ = 0;
   }
   // Room for `triangles` recorded triangles without reallocating while recording them.
-  void reserve_triangles(size_t triangles) { rects_.reserve(triangles); }
+  void reserve_triangles(size_t triangles) {
+    rects_.reserve(triangles);
+    refs_.reserve(triangles);
+  }
   // Frees the triangle and reference arrays (after reset()).
   void release() {
     std::vector<TileRect>().swap(rects_);
+    std::vector<uint32_t>().swap(refs_);
     std::vector<uint32_t>().swap(lists_);
   }
   size_t reference_capacity() const { return lists_.capacity(); }
-  // Records the next triangle (index = the number recorded before it).
-  void record(TileRect r) {
+  // Records the next triangle, which the lists of the tiles in `r` will name by `reference`.
+  void record(TileRect r, uint32_t reference) {
     rects_.push_back(r);
+    refs_.push_back(reference);
     references_ += r.count();
   }
   // Forgets the triangles recorded after the first `triangles`.
@@ -57,6 +64,7 @@ class Bins {
     for (size_t i = triangles; i < rects_.size(); ++i)
       references_ -= rects_[i].count();
     rects_.resize(triangles);
+    refs_.resize(triangles);
   }
   // Lays the recorded triangles' references out, tile by tile, in recording order.
   void place() {
@@ -80,11 +88,11 @@ class Bins {
       const TileRect r = rects_[i];
       for (uint32_t ty = r.y0; ty <= r.y1; ++ty) {
         for (uint32_t tx = r.x0; tx <= r.x1; ++tx)
-          lists_[next[ty * tiles_x_ + tx]++] = i;
+          lists_[next[ty * tiles_x_ + tx]++] = refs_[i];
       }
     }
   }
-  // Tile t's triangles, in submission order (after place()).
+  // Tile t's triangles' references, in submission order (after place()).
   std::span<const uint32_t> tile(uint32_t t) const {
     return {lists_.data() + starts_[t], starts_[t + 1] - starts_[t]};
   }
@@ -93,7 +101,8 @@ class Bins {
   // Bytes the bin set holds (allocated capacity, not only what is in use).
   uint64_t bytes() const {
     return counts_.capacity() * sizeof(uint32_t) + starts_.capacity() * sizeof(uint32_t) +
-           rects_.capacity() * sizeof(TileRect) + lists_.capacity() * sizeof(uint32_t);
+           rects_.capacity() * sizeof(TileRect) + refs_.capacity() * sizeof(uint32_t) +
+           lists_.capacity() * sizeof(uint32_t);
   }
 
  private:
@@ -101,6 +110,7 @@ class Bins {
   std::vector<uint32_t> counts_;
   std::vector<uint32_t> starts_;
   std::vector<TileRect> rects_;
+  std::vector<uint32_t> refs_;  // per recorded triangle
   std::vector<uint32_t> lists_;
   uint64_t references_ = 0;
 };

@@ -24,6 +24,7 @@
 
 #include "binning/tile_grid.hpp"
 #include "engine/src/fast/block_kernel.hpp"
+#include "engine/src/fast/pixel_record.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
 
@@ -917,49 +918,31 @@ HWY_INLINE uint32_t centres_inside(const TileContext& tc, const TriangleSetup& t
 }
 
 // Where pixel (x, y) of this tile lies for a triangle drawn pixel by pixel: its block and
-// value index in the tile's storage, its offset in the block, and its block's first pixel from
-// the plane origin (as compute_bases); block_bit is its block's bit for count_pixels.
+// value index in the tile's storage; block_bit is its block's bit for count_pixels, from the
+// block of the box's first pixel (x0, y0).
 struct PixelSite {
-  PixelSite(const TileContext& tc, const TriangleSetup& t, int32_t x, int32_t y)
+  PixelSite(const TileContext& tc, int32_t x0, int32_t y0, int32_t x, int32_t y)
       : block(static_cast<size_t>(((y - tc.tile_y0) >> 3) * kBlocksPerTileSide +
                                   ((x - tc.tile_x0) >> 3))),
         index(block * 64 + static_cast<size_t>((y & 7) * 8 + (x & 7))),
-        fx(static_cast<float>(x & 7)),
-        fy(static_cast<float>(y & 7)),
-        dx((x >> 3) * 8.0 - t.x0),
-        dy((y >> 3) * 8.0 - t.y0),
-        block_bit(1u << ((((y >> 3) - (t.y0 >> 3)) << 1) + ((x >> 3) - (t.x0 >> 3)))) {}
+        block_bit(1u << ((((y >> 3) - (y0 >> 3)) << 1) + ((x >> 3) - (x0 >> 3)))) {}
   size_t block, index;
-  float fx, fy;
-  double dx, dy;
   uint32_t block_bit;
 };
 
-// The colour of a pixel drawn one by one (raster_centres, raster_samples): the plane sums
-// raster_block forms for its lane (bases at the block's first pixel, fdx and fdy from the plane
-// origin; then the offset fx, fy to the pixel), divided by q. Beyond the triangle's horizon at
-// the pixel centre (q <= 0), raster_block evaluates at the pixel's first passing sample, at
-// (sample_fx, sample_fy) pixels from the centre, which is inside the triangle.
-HWY_INLINE void pixel_colour(const TriangleSetup& t, float fx, float fy, float fdx, float fdy,
-                             float sample_fx, float sample_fy, float (&channel)[4]) {
-  float qa_base[4];
-  for (int c = 0; c < 4; ++c) {
-    qa_base[c] = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
-    channel[c] = qa_base[c] + (fx * t.qa_dx[c] + fy * t.qa_dy[c]);
+// Whether a depth value passes against the stored one (and is written with kTestWrite, its
+// block's Hi-Z bounds then out of date): z clamped to [0, 1], rounded here to a fixed-point
+// format's steps as raster_block rounds its lanes.
+template <DepthMode kDepth>
+HWY_INLINE bool pixel_depth_passes(const TileContext& tc, size_t block, size_t index, float z) {
+  if (tc.depth_scale > 0.0f) z = std::nearbyint(z * tc.depth_scale);
+  float& stored = tc.depth[index];
+  if (!detail::depth_passes(tc.compare, z, stored)) return false;
+  if constexpr (kDepth == DepthMode::kTestWrite) {
+    stored = z;
+    mark_hiz_dirty(tc, block);
   }
-  if (t.flat_q) return;
-  const float q_base = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
-  const float q = q_base + (fx * t.q_dx + fy * t.q_dy);
-  if (q > 0.0f) {
-    const float inv_q = 1.0f / q;
-    for (float& v : channel)
-      v *= inv_q;
-    return;
-  }
-  const float sx = fx + sample_fx, sy = fy + sample_fy;
-  const float qs = q_base + (t.q_dx * sx + t.q_dy * sy);
-  for (int c = 0; c < 4; ++c)
-    channel[c] = (qa_base[c] + (t.qa_dx[c] * sx + t.qa_dy[c] * sy)) / qs;
+  return true;
 }
 
 // Writes a pixel's colour to its samples in `samples` (bit s: sample s), the pixel's value at
@@ -968,10 +951,7 @@ template <ColorMode kColor>
 HWY_INLINE void write_pixel(const TileContext& tc, size_t index, uint32_t samples,
                             const float (&channel)[4]) {
   if constexpr (kColor == ColorMode::kRGBA8) {
-    const uint32_t packed = uint32_t{tessera::to_unorm8(channel[0])} |
-                            uint32_t{tessera::to_unorm8(channel[1])} << 8 |
-                            uint32_t{tessera::to_unorm8(channel[2])} << 16 |
-                            uint32_t{tessera::to_unorm8(channel[3])} << 24;
+    const uint32_t packed = pack_rgba8(channel);
     uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + index;
     for (uint32_t rest = samples; rest != 0; rest &= rest - 1)
       colour[std::countr_zero(rest) * kSamplePlane] = packed;
@@ -982,14 +962,15 @@ HWY_INLINE void write_pixel(const TileContext& tc, size_t index, uint32_t sample
   }
 }
 
-// The counters of a triangle drawn pixel by pixel. The blocks of its box in this tile: those
+// The counters of a triangle drawn pixel by pixel. The blocks of its box (x0, y0)-(x1, y1)
+// in this tile: those
 // with a covered pixel (`blocks`, bit (by - by0) * 2 + (bx - bx0)) partial, the others rejected
 // (as the small path counts blocks its edges miss).
-HWY_INLINE void count_pixels(const TileContext& tc, const TriangleSetup& t, uint32_t blocks,
-                             uint32_t covered, uint32_t passed, uint32_t shaded,
+HWY_INLINE void count_pixels(const TileContext& tc, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
+                             uint32_t blocks, uint32_t covered, uint32_t passed, uint32_t shaded,
                              Counters& counters) {
-  const int32_t bx0 = std::max(t.x0, tc.x0) >> 3, bx1 = std::min(t.x1, tc.x1) >> 3;
-  const int32_t by0 = std::max(t.y0, tc.y0) >> 3, by1 = std::min(t.y1, tc.y1) >> 3;
+  const int32_t bx0 = std::max(x0, tc.x0) >> 3, bx1 = std::min(x1, tc.x1) >> 3;
+  const int32_t by0 = std::max(y0, tc.y0) >> 3, by1 = std::min(y1, tc.y1) >> 3;
   const uint32_t partial = static_cast<uint32_t>(std::popcount(blocks));
   counters.blocks_partial += partial;
   counters.blocks_rejected +=
@@ -1013,35 +994,57 @@ HWY_INLINE void raster_centres(const TileContext& tc, const TriangleSetup& t, ui
     const int32_t x = t.x0 + static_cast<int32_t>(bit & 3),
                   y = t.y0 + static_cast<int32_t>(bit >> 2);
     if (x < tc.x0 || x > tc.x1 || y < tc.y0 || y > tc.y1) continue;  // another tile's
-    const PixelSite site(tc, t, x, y);
-    const size_t block = site.block, index = site.index;
-    const float fx = site.fx, fy = site.fy;
-    const double dx = site.dx, dy = site.dy;
+    const PixelSite site(tc, t.x0, t.y0, x, y);
+    const PixelOffsets offsets(t, x, y);
     if constexpr (kCount) {
       ++covered;
       blocks |= site.block_bit;
     }
     if constexpr (kDepth != DepthMode::kOff) {
-      const float z_base = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
-      float z = z_base + (fx * t.z_dx + fy * t.z_dy);
-      z = z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;  // hn::Min(hn::Max(z, 0), 1)
-      if (tc.depth_scale > 0.0f) z = std::nearbyint(z * tc.depth_scale);
-      float& stored = tc.depth[index];
-      if (!detail::depth_passes(tc.compare, z, stored)) continue;
-      if constexpr (kDepth == DepthMode::kTestWrite) {
-        stored = z;
-        mark_hiz_dirty(tc, block);
+      if (!pixel_depth_passes<kDepth>(tc, site.block, site.index, centre_depth(t, offsets))) {
+        continue;
       }
     }
     if constexpr (kCount) ++passed;
     if constexpr (kColor != ColorMode::kOff) {
       float channel[4];
-      pixel_colour(t, fx, fy, static_cast<float>(dx), static_cast<float>(dy), 0.0f, 0.0f, channel);
-      write_pixel<kColor>(tc, index, 1u, channel);
+      pixel_colour(t, offsets, 0.0f, 0.0f, channel);
+      write_pixel<kColor>(tc, site.index, 1u, channel);
     }
   }
   if constexpr (kCount) {
-    count_pixels(tc, t, blocks, covered, passed, kColor != ColorMode::kOff ? passed : 0, counters);
+    count_pixels(tc, t.x0, t.y0, t.x1, t.y1, blocks, covered, passed,
+                 kColor != ColorMode::kOff ? passed : 0, counters);
+  }
+}
+
+// A pixel record (pixel_record.hpp): its pixels in this tile, depth-tested and written with
+// the values the setup computed for them, which are raster_centres' for the same pixels.
+template <DepthMode kDepth, ColorMode kColor, bool kCount>
+void RasterPixels(const TileContext& tc, const PixelRecord& r, Counters& counters) {
+  static_assert(kColor != ColorMode::kRGBA32F, "pixel records hold RGBA8 colour");
+  const int32_t x0 = r.x0, y0 = r.y0;
+  const uint32_t n = r.shape & 3u;
+  uint32_t covered = 0, passed = 0, blocks = 0;  // as count_pixels takes them
+  for (uint32_t i = 0; i < n; ++i) {
+    const int32_t x = x0 + (r.offset[i] & 3), y = y0 + (r.offset[i] >> 2);
+    if (x < tc.x0 || x > tc.x1 || y < tc.y0 || y > tc.y1) continue;  // another tile's
+    const PixelSite site(tc, x0, y0, x, y);
+    if constexpr (kCount) {
+      ++covered;
+      blocks |= site.block_bit;
+    }
+    if constexpr (kDepth != DepthMode::kOff) {
+      if (!pixel_depth_passes<kDepth>(tc, site.block, site.index, r.z[i])) continue;
+    }
+    if constexpr (kCount) ++passed;
+    if constexpr (kColor == ColorMode::kRGBA8) {
+      reinterpret_cast<uint32_t*>(tc.rgba8)[site.index] = r.rgba8[i];
+    }
+  }
+  if constexpr (kCount) {
+    count_pixels(tc, x0, y0, x0 + ((r.shape >> 2) & 3), y0 + ((r.shape >> 4) & 3), blocks, covered,
+                 passed, kColor != ColorMode::kOff ? passed : 0, counters);
   }
 }
 
@@ -1064,10 +1067,11 @@ HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Co
     const int32_t x = t.x0 + static_cast<int32_t>(p % 3), y = t.y0 + static_cast<int32_t>(p / 3);
     if (x < tc.x0 || x > tc.x1 || y < tc.y0 || y > tc.y1) continue;  // another tile's
     const uint32_t cov = (t.sample_bits >> (p * samples)) & pixel_samples;
-    const PixelSite site(tc, t, x, y);
+    const PixelSite site(tc, t.x0, t.y0, x, y);
     const size_t block = site.block, index = site.index;
-    const float fx = site.fx, fy = site.fy;
-    const double dx = site.dx, dy = site.dy;
+    const PixelOffsets offsets(t, x, y);
+    const float fx = offsets.fx, fy = offsets.fy;
+    const double dx = offsets.dx, dy = offsets.dy;
     if constexpr (kCount) {
       covered += static_cast<uint32_t>(std::popcount(cov));
       blocks |= site.block_bit;
@@ -1097,12 +1101,13 @@ HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Co
       if constexpr (kCount) ++shaded;
       const uint32_t first = static_cast<uint32_t>(std::countr_zero(pass));
       float channel[4];
-      pixel_colour(t, fx, fy, static_cast<float>(dx), static_cast<float>(dy), tc.sample_fx[first],
-                   tc.sample_fy[first], channel);
+      pixel_colour(t, offsets, tc.sample_fx[first], tc.sample_fy[first], channel);
       write_pixel<kColor>(tc, index, pass, channel);
     }
   }
-  if constexpr (kCount) count_pixels(tc, t, blocks, covered, passed, shaded, counters);
+  if constexpr (kCount) {
+    count_pixels(tc, t.x0, t.y0, t.x1, t.y1, blocks, covered, passed, shaded, counters);
+  }
 }
 
 // One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
@@ -1139,12 +1144,19 @@ template <DepthMode kDepth, ColorMode kColor>
 void fill_multi(KernelTable& t) {
   fill_count<kDepth, kColor, false>(t);
   fill_count<kDepth, kColor, true>(t);
+  if constexpr (kColor != ColorMode::kRGBA32F) {
+    t.pixel_kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][0] =
+        &RasterPixels<kDepth, kColor, false>;
+    t.pixel_kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][1] =
+        &RasterPixels<kDepth, kColor, true>;
+  }
 }
 
 }  // namespace
 
-// The twelve instances of depth mode kDepth (every colour mode, single or multisample,
-// counting or not) into table.kernels[kDepth]. Each block_kernel_depth_*.cpp instantiates it
+// The twelve triangle kernels of depth mode kDepth (every colour mode, single or multisample,
+// counting or not) into table.kernels[kDepth], and its four pixel-record kernels into
+// table.pixel_kernels[kDepth]. Each block_kernel_depth_*.cpp instantiates it
 // for its mode; block_kernel.cpp calls the three.
 template <DepthMode kDepth>
 void FillDepthKernels(KernelTable& table) {

@@ -1,5 +1,6 @@
-// The raster kernel table: for every SIMD target, the 36 instances of the kernel in
-// block_kernel-inl.h (depth mode x colour mode x single or multisample x counting or not).
+// The raster kernel table: for every SIMD target, the 36 triangle kernels in
+// block_kernel-inl.h (depth mode x colour mode x single or multisample x counting or not) and
+// the 12 pixel-record kernels (depth mode x no colour or RGBA8 x counting or not).
 // Each depth mode's instances compile in their own source (block_kernel_depth_off.cpp,
 // block_kernel_depth_test.cpp, block_kernel_depth_test_write.cpp), for the same targets as this
 // file, so the kernels build in parallel; this file only gathers them, per target, into one

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 
+#include "engine/src/fast/pixel_record.hpp"
 #include "engine/src/fast/triangle_setup.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
@@ -63,10 +64,13 @@ struct TileContext {
 };
 
 using TriangleKernel = void (*)(const TileContext&, const TriangleSetup&, Counters&);
+using PixelKernel = void (*)(const TileContext&, const PixelRecord&, Counters&);
 
 struct KernelTable {
   // [depth][colour][multisample][counting]
   TriangleKernel kernels[kDepthModes][kColorModes][2][2];
+  // [depth][colour][counting]: one sample, and no colour or RGBA8 (null for RGBA32F).
+  PixelKernel pixel_kernels[kDepthModes][kColorModes][2];
 };
 
 // The kernels compiled for a Highway target bit (see simd/dispatch.hpp).
@@ -76,6 +80,13 @@ inline TriangleKernel triangle_kernel(const KernelTable& table, DepthMode depth,
                                       bool multisample, bool count) {
   return table.kernels[static_cast<int>(depth)][static_cast<int>(color)][multisample ? 1 : 0]
                       [count ? 1 : 0];
+}
+
+// The kernel for pixel records, or null where a draw's state has none (colour other than
+// RGBA8 or none).
+inline PixelKernel pixel_kernel(const KernelTable& table, DepthMode depth, ColorMode color,
+                                bool count) {
+  return table.pixel_kernels[static_cast<int>(depth)][static_cast<int>(color)][count ? 1 : 0];
 }
 
 }  // namespace tessera::fast

@@ -33,6 +33,7 @@ constexpr size_t kMinChunkTriangles = 4096;
 
 struct Chunk {
   SetupList setups;  // reserved to the pass's capacity: never grows past the budget
+  PixelList pixels;  // reserved as setups (each triangle takes one or the other)
   binning::Bins bins;
   Counters counters;
   size_t begin = 0, end = 0;  // triangles of the draw given to this chunk
@@ -120,6 +121,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
                           : fb.desc.color_format == ColorFormat::kRGBA8 ? ColorMode::kRGBA8
                                                                         : ColorMode::kRGBA32F;
   const TriangleKernel kernel = triangle_kernel(*st.kernels, depth, color, samples > 1, st.count);
+  const PixelKernel pixels_kernel = pixel_kernel(*st.kernels, depth, color, st.count);
   const CompareOp op = pipeline.depth_compare;
   draw.hiz = st.hiz && pipeline.depth_test &&
              (op == CompareOp::kLess || op == CompareOp::kLessEqual || op == CompareOp::kGreater ||
@@ -136,6 +138,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.check_finite = check_finite;
   ctx.bin_tile_log2 = grid.size_log2;
   ctx.samples = samples;
+  ctx.pixel_records = samples == 1 && pixels_kernel != nullptr;
   for (uint32_t s = 0; s < samples; ++s) {
     ctx.sample_dx[s] = pattern[s].dx;
     ctx.sample_dy[s] = pattern[s].dy;
@@ -174,7 +177,9 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   for (Counters& c : st.raster_counters)
     c = {};
 
-  constexpr uint64_t kTriangleBytes = sizeof(TriangleSetup) + binning::Bins::kBytesPerTriangle;
+  // A triangle's setup or pixel record (both are reserved for each) and its bin entry.
+  constexpr uint64_t kTriangleBytes =
+      sizeof(TriangleSetup) + sizeof(PixelRecord) + binning::Bins::kBytesPerTriangle;
   constexpr uint64_t kReferenceBytes = binning::Bins::kBytesPerReference;
   constexpr size_t kBatch = 256;
   // A triangle cut by clip planes becomes at most kMaxClipVertices - 2 pieces.
@@ -186,9 +191,11 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     // as many triangles as that room holds, so chunks rarely stop early (a chunk that does
     // makes the later ones redo their range in the next pass).
     const double refs_per_triangle = std::max(st.references_per_triangle, 1.0);
-    const uint64_t setup_capacity = std::max<uint64_t>(
-        kMaxPieces, static_cast<uint64_t>(static_cast<double>(room) /
-                                          (kTriangleBytes + refs_per_triangle * kReferenceBytes)));
+    // (Below kPixelRecordBit: a reference is an index with that bit free.)
+    const uint64_t setup_capacity = std::clamp<uint64_t>(
+        static_cast<uint64_t>(static_cast<double>(room) /
+                              (kTriangleBytes + refs_per_triangle * kReferenceBytes)),
+        kMaxPieces, kPixelRecordBit - 1);
     const uint64_t reference_capacity =
         std::max<uint64_t>(room > setup_capacity * kTriangleBytes
                                ? (room - setup_capacity * kTriangleBytes) / kReferenceBytes
@@ -206,6 +213,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       tbb::parallel_for(size_t{0}, chunk_count, [&](size_t c) {
         Chunk& chunk = st.chunks[c];
         chunk.setups.clear();
+        chunk.pixels.clear();
         chunk.bins.reset(grid.tile_count(), grid.tiles_x);
         chunk.counters = {};
         chunk.stopped_at = chunk.end;
@@ -219,43 +227,48 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
         if (held(chunk.setups.capacity(), 0) > chunk_budget) {
           // Capacity kept from a draw with fewer chunks or a smaller grid: start afresh.
           SetupList().swap(chunk.setups);
+          PixelList().swap(chunk.pixels);
           chunk.bins.release();
         }
         size_t t = chunk.begin;
         size_t batch = kBatch;
         while (t < chunk.end) {
           // Room for the batch's worst case (kMaxPieces setups per triangle) without the
-          // vector's own growth, which could pass setup_capacity: grow here, within it.
-          const size_t worst = chunk.setups.size() + std::min(batch, chunk.end - t) * kMaxPieces;
+          // vector's own growth, which could pass setup_capacity: grow here, within it. The
+          // binned triangles are the chunk's setups and pixel records together.
+          const size_t binned = chunk.bins.triangles();
+          const size_t worst = binned + std::min(batch, chunk.end - t) * kMaxPieces;
           if (worst > chunk.setups.capacity() && chunk.setups.capacity() < setup_capacity) {
             // Enough for the rest of the range at one piece per triangle plus a batch's worst
             // case, so the usual draw grows its setups once.
-            const size_t wanted =
-                std::max(worst, chunk.setups.size() + (chunk.end - t) + kBatch * kMaxPieces);
+            const size_t wanted = std::max(worst, binned + (chunk.end - t) + kBatch * kMaxPieces);
             const size_t grown = std::min<size_t>(setup_capacity, wanted);
             if (held(grown, chunk.bins.references()) <= chunk_budget || chunk.setups.empty()) {
               chunk.setups.reserve(grown);
+              if (ctx.pixel_records) chunk.pixels.reserve(grown);
               chunk.bins.reserve_triangles(chunk.setups.capacity());
             }
           }
           batch = std::min<size_t>(
-              batch,
-              std::max<size_t>((chunk.setups.capacity() - chunk.setups.size()) / kMaxPieces, 1));
+              batch, std::max<size_t>((chunk.setups.capacity() - binned) / kMaxPieces, 1));
           const size_t batch_end = std::min(chunk.end, t + batch);
-          const size_t first = chunk.setups.size();
+          const size_t first = binned;
+          const size_t first_setup = chunk.setups.size(), first_pixel = chunk.pixels.size();
           const Counters before = chunk.counters;
-          if (!st.setup(ctx, input, t, batch_end, chunk.setups, chunk.bins, chunk.counters)) {
+          if (!st.setup(ctx, input, t, batch_end, chunk.setups, chunk.pixels, chunk.bins,
+                        chunk.counters)) {
             // A NaN or infinity (ctx.check_finite): the draw stops with validation's error.
             chunk.non_finite = true;
             chunk.stopped_at = t;
             break;
           }
-          const bool fits = chunk.setups.size() <= setup_capacity &&
+          const bool fits = chunk.bins.triangles() <= setup_capacity &&
                             chunk.bins.references() <= reference_capacity &&
                             held(chunk.setups.capacity(), chunk.bins.references()) <= chunk_budget;
           if (!fits && (first > 0 || batch > 1)) {
             // Undo the batch; retry smaller, or end the chunk's part of this pass here.
-            chunk.setups.resize(first);
+            chunk.setups.resize(first_setup);
+            chunk.pixels.resize(first_pixel);
             chunk.bins.truncate(first);
             chunk.counters = before;
             if (first > 0) {
@@ -298,14 +311,14 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     std::vector<ChunkView> views(kept);
     uint64_t kept_setups = 0, kept_references = 0;
     for (size_t c = 0; c < kept; ++c) {
-      views[c] = {st.chunks[c].setups.data(), &st.chunks[c].bins};
+      views[c] = {st.chunks[c].setups.data(), st.chunks[c].pixels.data(), &st.chunks[c].bins};
       const Counters& cc = st.chunks[c].counters;
       counters.triangles_submitted += cc.triangles_submitted;
       counters.triangles_culled += cc.triangles_culled;
       counters.triangles_clipped += cc.triangles_clipped;
       counters.triangles_rasterized += cc.triangles_rasterized;
       counters.bin_references += st.chunks[c].bins.references();
-      kept_setups += st.chunks[c].setups.size();
+      kept_setups += st.chunks[c].bins.triangles();
       kept_references += st.chunks[c].bins.references();
     }
     if (kept_setups > 0) {
@@ -321,7 +334,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       tbb::parallel_for(tbb::blocked_range<uint32_t>(0, grid.tile_count(), 1),
                         [&](const tbb::blocked_range<uint32_t>& r) {
                           for (uint32_t tile = r.begin(); tile != r.end(); ++tile) {
-                            raster_tile(draw, kernel, fb, grid, tile, views,
+                            raster_tile(draw, kernel, pixels_kernel, fb, grid, tile, views,
                                         st.raster_counters.local());
                           }
                         });

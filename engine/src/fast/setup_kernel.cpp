@@ -46,6 +46,11 @@ struct Out {
   alignas(64) double a[3][kMaxLanes], b[3][kMaxLanes], c[3][kMaxLanes];
   alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes], centres[kMaxLanes],
       sample_bits[kMaxLanes];
+  // SetupContext::pixel_records: where the lane becomes a pixel record, its covered pixels (1
+  // to kPixelRecordPixels; otherwise 0) and the record's bytes, lane l's two 16-byte pieces at
+  // pixel_words[k][4 l].
+  alignas(64) double pixel_count[kMaxLanes];
+  alignas(64) uint32_t pixel_words[2][kMaxLanes * 4];
   alignas(64) double z0[kMaxLanes], z_dx[kMaxLanes], z_dy[kMaxLanes], z_min[kMaxLanes],
       z_max[kMaxLanes];
   alignas(64) double q0[kMaxLanes], q_dx[kMaxLanes], q_dy[kMaxLanes];
@@ -105,6 +110,84 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
   put(6, f32(out.qa_dx[2]), f32(out.qa_dx[3]), f32(out.qa_dy[0]), f32(out.qa_dy[1]));
   const auto zero = hn::Zero(du);
   put(7, f32(out.qa_dy[2]), f32(out.qa_dy[3]), i32(out.sample_bits), zero);
+}
+
+// The pixel records of the lanes from l0 whose `count` covered pixels (1 to kPixelRecordPixels)
+// are the first `count` of (box_x[i], box_y[i]) (from the box's first pixel): their depth and
+// colour from the planes Out holds, as the kernels' per-pixel path forms them (centre_depth,
+// pixel_colour and pack_rgba8 in pixel_record.hpp) with the same operations in the same order
+// in float lanes, so the same bits; then PixelRecord's bytes in Out::pixel_words.
+template <class D, class V>
+HWY_INLINE void PixelValues(D d, size_t l0, const V* box_x, const V* box_y, V count, Out& out) {
+  const hn::Rebind<float, D> df;
+  const hn::Rebind<int32_t, D> di;
+  const hn::Rebind<uint32_t, D> du;
+  const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
+  const auto f32 = [&](const double* p) { return hn::DemoteTo(df, load(p)); };
+  const auto zero = hn::Zero(df), one = hn::Set(df, 1.0f);
+  const auto flat_f = hn::Ne(f32(out.flat_q), zero);
+  const auto z_dx = f32(out.z_dx), z_dy = f32(out.z_dy);
+  const V z0 = load(out.z0), z_dx_d = hn::PromoteTo(d, z_dx), z_dy_d = hn::PromoteTo(d, z_dy);
+  const auto q0 = f32(out.q0), q_dx = f32(out.q_dx), q_dy = f32(out.q_dy);
+  hn::Vec<decltype(df)> qa0[4], qa_dx[4], qa_dy[4];
+  for (int c = 0; c < 4; ++c) {
+    qa0[c] = f32(out.qa0[c]);
+    qa_dx[c] = f32(out.qa_dx[c]);
+    qa_dy[c] = f32(out.qa_dy[c]);
+  }
+  const V x0 = load(out.x0), y0 = load(out.y0);
+  hn::Vec<decltype(du)> z_bits[kPixelRecordPixels], rgba8[kPixelRecordPixels];
+  auto offsets = hn::Zero(du);
+  for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
+    // PixelOffsets: fx, fy from the pixel's block; dx, dy from the block to the box's first pixel.
+    const auto bxi = hn::DemoteTo(di, box_x[i]), byi = hn::DemoteTo(di, box_y[i]);
+    offsets =
+        hn::Or(offsets, hn::ShiftLeftSame(hn::BitCast(du, hn::Add(hn::ShiftLeft<2>(byi), bxi)),
+                                          static_cast<int>(8 * i)));
+    const auto xi = hn::Add(hn::DemoteTo(di, x0), bxi), yi = hn::Add(hn::DemoteTo(di, y0), byi);
+    const auto fxi = hn::And(xi, hn::Set(di, 7)), fyi = hn::And(yi, hn::Set(di, 7));
+    const V dx = hn::Sub(hn::PromoteTo(d, hn::Sub(xi, fxi)), x0);
+    const V dy = hn::Sub(hn::PromoteTo(d, hn::Sub(yi, fyi)), y0);
+    const auto fx = hn::ConvertTo(df, fxi), fy = hn::ConvertTo(df, fyi);
+    // centre_depth.
+    const auto z_base =
+        hn::DemoteTo(df, hn::Add(hn::Add(z0, hn::Mul(z_dx_d, dx)), hn::Mul(z_dy_d, dy)));
+    const auto z = hn::Add(z_base, hn::Add(hn::Mul(fx, z_dx), hn::Mul(fy, z_dy)));
+    const auto z_clamped =
+        hn::IfThenElse(hn::Gt(z, zero), hn::IfThenElse(hn::Lt(z, one), z, one), zero);
+    z_bits[i] = hn::BitCast(du, z_clamped);
+    // pixel_colour at the centre (no sample offset).
+    const auto fdx = hn::DemoteTo(df, dx), fdy = hn::DemoteTo(df, dy);
+    const auto q_base = hn::Add(q0, hn::Add(hn::Mul(q_dx, fdx), hn::Mul(q_dy, fdy)));
+    const auto q = hn::Add(q_base, hn::Add(hn::Mul(fx, q_dx), hn::Mul(fy, q_dy)));
+    const auto positive = hn::Gt(q, zero);
+    const auto inv_q = hn::Div(one, q);
+    auto packed = hn::Zero(du);
+    for (int c = 0; c < 4; ++c) {
+      const auto qa_base = hn::Add(qa0[c], hn::Add(hn::Mul(qa_dx[c], fdx), hn::Mul(qa_dy[c], fdy)));
+      const auto v = hn::Add(qa_base, hn::Add(hn::Mul(fx, qa_dx[c]), hn::Mul(fy, qa_dy[c])));
+      // Beyond the horizon (q <= 0) the first sample is the centre: v / q.
+      const auto value =
+          hn::IfThenElse(flat_f, v, hn::IfThenElse(positive, hn::Mul(v, inv_q), hn::Div(v, q)));
+      // to_unorm8.
+      const auto scaled = hn::BitCast(
+          du, hn::ConvertTo(di, hn::Add(hn::Mul(value, hn::Set(df, 255.0f)), hn::Set(df, 0.5f))));
+      const auto unorm = hn::IfThenElse(
+          hn::RebindMask(du, hn::Gt(value, zero)),
+          hn::IfThenElse(hn::RebindMask(du, hn::Ge(value, one)), hn::Set(du, 255u), scaled),
+          hn::Zero(du));
+      packed = hn::Or(packed, hn::ShiftLeftSame(unorm, 8 * c));
+    }
+    rgba8[i] = packed;
+  }
+  const auto i32 = [&](V v) { return hn::BitCast(du, hn::DemoteTo(di, v)); };
+  const auto origin = hn::Or(i32(x0), hn::ShiftLeft<16>(i32(y0)));
+  const auto shape = hn::Or(i32(count), hn::Or(hn::ShiftLeft<2>(i32(hn::Sub(load(out.x1), x0))),
+                                               hn::ShiftLeft<4>(i32(hn::Sub(load(out.y1), y0)))));
+  static_assert(kPixelRecordPixels == 3);
+  hn::StoreInterleaved4(origin, hn::Or(shape, hn::ShiftLeft<8>(offsets)), z_bits[0], z_bits[1], du,
+                        out.pixel_words[0] + 4 * l0);
+  hn::StoreInterleaved4(z_bits[2], rgba8[0], rgba8[1], rgba8[2], du, out.pixel_words[1] + 4 * l0);
 }
 
 // One vector of lanes from l0, whose vertices' positions `pos` holds as x, y, z, w vectors.
@@ -224,8 +307,11 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   // Two or four samples and a box of at most 3x3 pixels (TriangleSetup::sample_bits): which
   // samples are inside, from the same values plus each sample's offset. If none is, the
   // triangle covers nothing and is not binned.
-  const bool centre_only = ctx.centre_sample_only();
-  const bool sample_bits = ctx.small_sample_bits();
+  // (Pixel records take the small boxes' centres from the 3x3 test below; the few setups of
+  // such boxes left are tested by the kernel.)
+  const bool centre_only = ctx.centre_sample_only() && !ctx.pixel_records;
+  // The samples of boxes up to 3x3: sample_bits, or at one sample the centres for pixel records.
+  const bool sample_bits = ctx.small_sample_bits() || ctx.pixel_records;
   const V box_dx = hn::Min(hn::Sub(bx1, bx0), hn::Set(d, 1.0));  // 0 or 1 in a small box
   const V box_dy = hn::Min(hn::Sub(by1, by0), hn::Set(d, 1.0));
   auto in00 = hn::Eq(zero, zero), in10 = in00, in01 = in00, in11 = in00;
@@ -249,11 +335,10 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
         in10 = hn::And(in10, hn::Ge(e10, zero));
         in01 = hn::And(in01, hn::Ge(e01, zero));
         in11 = hn::And(in11, hn::Ge(e11, zero));
-      } else {
-        edge_at[k] = e00;
-        edge_dx[k] = dx;
-        edge_dy[k] = dy;
       }
+      edge_at[k] = e00;
+      edge_dx[k] = dx;
+      edge_dy[k] = dy;
     }
     max_step = hn::Max(max_step, hn::Add(hn::Abs(dy), hn::Abs(dx)));
     max_delta = hn::Max(max_delta, hn::Max(hn::Abs(dy), hn::Abs(dx)));
@@ -283,10 +368,20 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   }
   hn::Store(centres, d, out.centres + l0);
   V sample_mask = zero;  // TriangleSetup::sample_bits
+  // One sample (pixel records): the first kPixelRecordPixels covered pixels in row-major
+  // order, from the box's first pixel, and how many pixels are covered.
+  V at_x[kPixelRecordPixels], at_y[kPixelRecordPixels], found = zero;
+  for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
+    at_x[i] = zero;
+    at_y[i] = zero;
+  }
+  bool pixel_values = false;
+  auto any_pixel = hn::Lt(zero, zero);
   if (sample_bits) {
     // Sample s of a box pixel is inside edge k when E(centre) + a dx_s + b dy_s >= 0, with
     // a = -dy, b = dx: E(centre) >= dy dx_s - dx dy_s (exact: products below 2^51). The box's
-    // pixels are those whose bits fit 32: every 3x3 one at two samples, all but the last at four.
+    // pixels are those whose bits fit 32: every 3x3 one at one and two samples, all but the last
+    // at four.
     const uint32_t samples = ctx.samples;
     const uint32_t pixels = std::min(9u, 32u / samples);
     const V last_x = hn::Sub(bx1, bx0), last_y = hn::Sub(by1, by0);  // in the box, from 0
@@ -313,6 +408,14 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
                       hn::And(hn::Ge(e[1], least[1][s]), hn::Ge(e[2], least[2][s])));
           const double bit = static_cast<double>(1u << (pixel * samples + s));
           sample_mask = hn::Add(sample_mask, hn::IfThenElseZero(covered, hn::Set(d, bit)));
+          if (samples == 1) {
+            for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
+              const auto here = hn::And(covered, hn::Eq(found, hn::Set(d, static_cast<double>(i))));
+              at_x[i] = hn::IfThenElse(here, hn::Set(d, static_cast<double>(px)), at_x[i]);
+              at_y[i] = hn::IfThenElse(here, hn::Set(d, static_cast<double>(py)), at_y[i]);
+            }
+            found = hn::Add(found, hn::IfThenElseZero(covered, hn::Set(d, 1.0)));
+          }
         }
         for (int k = 0; k < 3; ++k)
           e[k] = hn::Sub(e[k], hn::Mul(edge_dy[k], hn::Set(d, scale)));
@@ -321,12 +424,20 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
         row[k] = hn::Add(row[k], hn::Mul(edge_dx[k], hn::Set(d, scale)));
     }
     any_sample = hn::And(any_sample, hn::Or(hn::Not(fits), hn::Gt(sample_mask, zero)));
+    if (samples == 1) {
+      // Pixel records for the lanes with 1 to kPixelRecordPixels covered pixels.
+      any_pixel = hn::And(hn::Gt(found, zero),
+                          hn::Le(found, hn::Set(d, static_cast<double>(kPixelRecordPixels))));
+      pixel_values = true;
+    }
     // As a signed 32-bit value, for PackLanes' conversion: the same bits.
     const V top = hn::Set(d, 2147483648.0);
     sample_mask =
         hn::Sub(sample_mask, hn::IfThenElseZero(hn::Ge(sample_mask, top), hn::Add(top, top)));
   }
-  hn::Store(sample_mask, d, out.sample_bits + l0);
+  // At one sample the bits are the pixel records' centres, and the setups carry none.
+  hn::Store(ctx.samples == 1 ? zero : sample_mask, d, out.sample_bits + l0);
+  hn::Store(hn::IfThenElseZero(any_pixel, found), d, out.pixel_count + l0);
   hn::Store(as_double_mask(d, any_sample), d, out.any_sample + l0);
 
   auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {
@@ -356,7 +467,13 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     plane(hn::Mul(q[0], C[0][c]), hn::Mul(q[1], C[1][c]), hn::Mul(q[2], C[2][c]), out.qa0[c],
           out.qa_dx[c], out.qa_dy[c]);
   }
-  PackLanes(d, l0, out);
+  if (pixel_values && !hn::AllFalse(d, any_pixel)) {
+    PixelValues(d, l0, at_x, at_y, found, out);
+  }
+  // Setup records only for lanes that are binned and not pixel records (the clipper makes its
+  // own): often none, with tiny triangles.
+  const auto full = hn::AndNot(any_pixel, hn::And(keep, any_sample));
+  if (!hn::AllFalse(d, full)) PackLanes(d, l0, out);
 }
 
 void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
@@ -413,7 +530,7 @@ HWY_INLINE void stream_piece(const void* from, void* to) {
 }
 
 bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, size_t end,
-                SetupList& setups, binning::Bins& bins, Counters& counters) {
+                SetupList& setups, PixelList& pixels, binning::Bins& bins, Counters& counters) {
   const hn::ScalableTag<double> d;
   const size_t lanes = std::min(hn::Lanes(d), kMaxLanes);
   const bool indexed = !input.indices.empty();
@@ -447,6 +564,8 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
     // not written, and the list is cut to it after the lanes.
     size_t next = setups.size();
     setups.resize(next + used);
+    size_t next_pixel = pixels.size();
+    if (ctx.pixel_records) pixels.resize(next_pixel + used);
     for (size_t l = 0; l < used; ++l) {
       if (out.inside[l] == 0.0) {
         // A clip plane cuts this triangle: the scalar path clips it (and counts it), after the
@@ -461,10 +580,11 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         }
         setup_triangle(ctx, position, attribute, setups, counters);
         for (size_t i = next; i < setups.size(); ++i)
-          bins.record(tile_rect(static_cast<uint32_t>(setups[i].x0),
-                                static_cast<uint32_t>(setups[i].y0),
-                                static_cast<uint32_t>(setups[i].x1),
-                                static_cast<uint32_t>(setups[i].y1), ctx.bin_tile_log2));
+          bins.record(
+              tile_rect(static_cast<uint32_t>(setups[i].x0), static_cast<uint32_t>(setups[i].y0),
+                        static_cast<uint32_t>(setups[i].x1), static_cast<uint32_t>(setups[i].y1),
+                        ctx.bin_tile_log2),
+              static_cast<uint32_t>(i));
         next = setups.size();
         setups.resize(next + used - l - 1);
         continue;
@@ -476,18 +596,27 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
       }
       ++counters.triangles_rasterized;
       if (out.any_sample[l] == 0.0) continue;  // covers no sample
+      const binning::TileRect tiles = tile_rect(
+          static_cast<uint32_t>(out.x0[l]), static_cast<uint32_t>(out.y0[l]),
+          static_cast<uint32_t>(out.x1[l]), static_cast<uint32_t>(out.y1[l]), ctx.bin_tile_log2);
+      if (out.pixel_count[l] != 0.0) {
+        char* record = reinterpret_cast<char*>(&pixels[next_pixel]);
+        for (int k = 0; k < 2; ++k)
+          stream_piece(out.pixel_words[k] + 4 * l, record + 16 * k);
+        bins.record(tiles, kPixelRecordBit | static_cast<uint32_t>(next_pixel++));
+        continue;
+      }
       // The record, in ten 16-byte pieces (a record lies at a multiple of 160 bytes from a
       // 64-byte aligned start: every piece is aligned).
-      char* record = reinterpret_cast<char*>(&setups[next++]);
+      char* record = reinterpret_cast<char*>(&setups[next]);
       for (int k = 0; k < 2; ++k)
         stream_piece(out.wide[k] + 2 * l, record + 16 * k);
       for (int k = 0; k < 8; ++k)
         stream_piece(out.words[k] + 4 * l, record + 32 + 16 * k);
-      bins.record(tile_rect(static_cast<uint32_t>(out.x0[l]), static_cast<uint32_t>(out.y0[l]),
-                            static_cast<uint32_t>(out.x1[l]), static_cast<uint32_t>(out.y1[l]),
-                            ctx.bin_tile_log2));
+      bins.record(tiles, static_cast<uint32_t>(next++));
     }
     setups.resize(next);
+    pixels.resize(next_pixel);
   }
   hwy::FlushStream();
   return ok;

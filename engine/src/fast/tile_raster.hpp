@@ -12,9 +12,10 @@
 
 namespace tessera::fast {
 
-// One setup worker's output: its triangles and its bins.
+// One setup worker's output: its triangles (setups and pixel records) and its bins.
 struct ChunkView {
   const TriangleSetup* setups = nullptr;
+  const PixelRecord* pixels = nullptr;
   const binning::Bins* bins = nullptr;
 };
 
@@ -33,9 +34,10 @@ struct BinGrid {
 };
 
 // Rasterizes bin tile `tile`: for each storage tile it overlaps, every binned triangle in
-// submission order. `draw` holds the per-draw fields of TileContext.
-void raster_tile(const TileContext& draw, TriangleKernel kernel, detail::FramebufferStorage& fb,
-                 const BinGrid& bins, uint32_t tile, std::span<const ChunkView> chunks,
-                 Counters& counters);
+// submission order. `draw` holds the per-draw fields of TileContext; pixel records go to
+// `pixel_kernel`.
+void raster_tile(const TileContext& draw, TriangleKernel kernel, PixelKernel pixel_kernel,
+                 detail::FramebufferStorage& fb, const BinGrid& bins, uint32_t tile,
+                 std::span<const ChunkView> chunks, Counters& counters);
 
 }  // namespace tessera::fast

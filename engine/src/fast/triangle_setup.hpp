@@ -44,7 +44,7 @@ struct TriangleSetup {
   bool flat_q;  // q is 1 everywhere (affine, or every vertex has the same w): no division
   // One sample per pixel and a bounding box of at most 2x2 pixels: which of its pixel centres
   // are inside, bit (y - y0) * 4 + (x - x0), from exact edge functions. 0 when not known (any
-  // other triangle): the kernel then tests the edges itself.
+  // other triangle, and draws that take pixel records): the kernel then tests the edges itself.
   uint8_t centres;
   float z_dx, z_dy;
   float z_min, z_max;  // over the vertices
@@ -94,6 +94,11 @@ struct SetupContext {
   bool centre_sample_only() const {
     return sample_dx_lo == 0 && sample_dx_hi == 0 && sample_dy_lo == 0 && sample_dy_hi == 0;
   }
+  // One sample per pixel and a colour target that is RGBA8 or not written: the vectorized
+  // setup turns triangles that cover at most three pixels of a box of at most 3x3 into pixel
+  // records (pixel_record.hpp).
+  bool pixel_records = false;
+
   // Whether small triangles' setups carry TriangleSetup::sample_bits.
   bool small_sample_bits() const { return samples == 2 || samples == 4; }
 };
