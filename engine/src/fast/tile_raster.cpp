@@ -16,6 +16,13 @@ void prefetch_for_write(const void* p, size_t bytes) {
   }
 }
 
+// Fetches a setup's three cache lines.
+inline void prefetch_setup(const TriangleSetup* setup) {
+  const char* record = reinterpret_cast<const char*>(setup);
+  for (size_t line = 0; line < sizeof(TriangleSetup); line += 64)
+    __builtin_prefetch(record + line);
+}
+
 }  // namespace
 
 void raster_tile(const TileContext& draw, TriangleKernel kernel, PixelKernel pixel_kernel,
@@ -62,19 +69,28 @@ void raster_tile(const TileContext& draw, TriangleKernel kernel, PixelKernel pix
 
       for (const ChunkView& chunk : chunks) {
         const std::span<const uint32_t> list = chunk.bins->tile(tile);
+        // Records were written long before this tile reads them: each is fetched a few
+        // references ahead. A setup spans three cache lines and is fetched 6 ahead (measured 2%
+        // faster than 4 on `tiny`, the same elsewhere; 2 and 12 slower); a pixel record is one
+        // line and is fetched 16 ahead. The first ones are fetched before the loop.
+        constexpr size_t kSetupAhead = 6, kPixelAhead = 16;
+        for (size_t n = 0; n < list.size() && n < kPixelAhead; ++n) {
+          const uint32_t ahead = list[n];
+          if ((ahead & kPixelRecordBit) != 0) {
+            __builtin_prefetch(chunk.pixels + (ahead & ~kPixelRecordBit));
+          } else if (n < kSetupAhead) {
+            prefetch_setup(chunk.setups + ahead);
+          }
+        }
         for (size_t n = 0; n < list.size(); ++n) {
-          // Setups were written long before this tile reads them: fetch a few ahead (6
-          // measured 2% faster than 4 on `tiny`, the same elsewhere; 2 and 12 slower).
-          constexpr size_t kAhead = 6;
-          if (n + kAhead < list.size()) {
-            const uint32_t ahead = list[n + kAhead];
+          if (n + kSetupAhead < list.size()) {
+            const uint32_t ahead = list[n + kSetupAhead];
+            if ((ahead & kPixelRecordBit) == 0) prefetch_setup(chunk.setups + ahead);
+          }
+          if (n + kPixelAhead < list.size()) {
+            const uint32_t ahead = list[n + kPixelAhead];
             if ((ahead & kPixelRecordBit) != 0) {
-              __builtin_prefetch(&chunk.pixels[ahead & ~kPixelRecordBit]);
-            } else {
-              const char* record = reinterpret_cast<const char*>(&chunk.setups[ahead]);
-              for (size_t line = 0; line < sizeof(TriangleSetup); line += 64) {
-                __builtin_prefetch(record + line);
-              }
+              __builtin_prefetch(chunk.pixels + (ahead & ~kPixelRecordBit));
             }
           }
           const uint32_t reference = list[n];
