@@ -34,9 +34,8 @@ struct PixelRecord {
 };
 static_assert(sizeof(PixelRecord) == 32 && std::is_trivially_default_constructible_v<PixelRecord>);
 
-// The most pixels a pixel record holds, and the largest box side it describes.
+// The most pixels a pixel record holds.
 inline constexpr uint32_t kPixelRecordPixels = 3;
-inline constexpr int32_t kPixelRecordBox = 3;
 
 // A bin reference with this bit set names a pixel record; without it, a TriangleSetup.
 inline constexpr uint32_t kPixelRecordBit = 0x80000000u;

@@ -136,6 +136,7 @@ HWY_INLINE void PixelValues(D d, size_t l0, const V* box_x, const V* box_y, V co
     qa_dy[c] = f32(out.qa_dy[c]);
   }
   const V x0 = load(out.x0), y0 = load(out.y0);
+  const auto x0i = hn::DemoteTo(di, x0), y0i = hn::DemoteTo(di, y0);
   hn::Vec<decltype(du)> z_bits[kPixelRecordPixels], rgba8[kPixelRecordPixels];
   auto offsets = hn::Zero(du);
   for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
@@ -144,7 +145,7 @@ HWY_INLINE void PixelValues(D d, size_t l0, const V* box_x, const V* box_y, V co
     offsets =
         hn::Or(offsets, hn::ShiftLeftSame(hn::BitCast(du, hn::Add(hn::ShiftLeft<2>(byi), bxi)),
                                           static_cast<int>(8 * i)));
-    const auto xi = hn::Add(hn::DemoteTo(di, x0), bxi), yi = hn::Add(hn::DemoteTo(di, y0), byi);
+    const auto xi = hn::Add(x0i, bxi), yi = hn::Add(y0i, byi);
     const auto fxi = hn::And(xi, hn::Set(di, 7)), fyi = hn::And(yi, hn::Set(di, 7));
     const V dx = hn::Sub(hn::PromoteTo(d, hn::Sub(xi, fxi)), x0);
     const V dy = hn::Sub(hn::PromoteTo(d, hn::Sub(yi, fyi)), y0);
@@ -181,7 +182,7 @@ HWY_INLINE void PixelValues(D d, size_t l0, const V* box_x, const V* box_y, V co
     rgba8[i] = packed;
   }
   const auto i32 = [&](V v) { return hn::BitCast(du, hn::DemoteTo(di, v)); };
-  const auto origin = hn::Or(i32(x0), hn::ShiftLeft<16>(i32(y0)));
+  const auto origin = hn::Or(hn::BitCast(du, x0i), hn::ShiftLeft<16>(hn::BitCast(du, y0i)));
   const auto shape = hn::Or(i32(count), hn::Or(hn::ShiftLeft<2>(i32(hn::Sub(load(out.x1), x0))),
                                                hn::ShiftLeft<4>(i32(hn::Sub(load(out.y1), y0)))));
   static_assert(kPixelRecordPixels == 3);
@@ -375,8 +376,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     at_x[i] = zero;
     at_y[i] = zero;
   }
-  bool pixel_values = false;
-  auto any_pixel = hn::Lt(zero, zero);
+  auto any_pixel = hn::Lt(zero, zero);  // the lanes that become pixel records
   if (sample_bits) {
     // Sample s of a box pixel is inside edge k when E(centre) + a dx_s + b dy_s >= 0, with
     // a = -dy, b = dx: E(centre) >= dy dx_s - dx dy_s (exact: products below 2^51). The box's
@@ -428,7 +428,6 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
       // Pixel records for the lanes with 1 to kPixelRecordPixels covered pixels.
       any_pixel = hn::And(hn::Gt(found, zero),
                           hn::Le(found, hn::Set(d, static_cast<double>(kPixelRecordPixels))));
-      pixel_values = true;
     }
     // As a signed 32-bit value, for PackLanes' conversion: the same bits.
     const V top = hn::Set(d, 2147483648.0);
@@ -467,9 +466,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     plane(hn::Mul(q[0], C[0][c]), hn::Mul(q[1], C[1][c]), hn::Mul(q[2], C[2][c]), out.qa0[c],
           out.qa_dx[c], out.qa_dy[c]);
   }
-  if (pixel_values && !hn::AllFalse(d, any_pixel)) {
-    PixelValues(d, l0, at_x, at_y, found, out);
-  }
+  if (!hn::AllFalse(d, any_pixel)) PixelValues(d, l0, at_x, at_y, found, out);
   // Setup records only for lanes that are binned and not pixel records (the clipper makes its
   // own): often none, with tiny triangles.
   const auto full = hn::AndNot(any_pixel, hn::And(keep, any_sample));
