@@ -68,7 +68,12 @@ class Bins {
   }
   // Lays the recorded triangles' references out, tile by tile, in recording order.
   void place() {
+    // Most triangles of a dense scene touch one tile: they skip the loops.
     for (const TileRect& r : rects_) {
+      if (r.x0 == r.x1 && r.y0 == r.y1) {
+        ++counts_[r.y0 * tiles_x_ + r.x0];
+        continue;
+      }
       for (uint32_t ty = r.y0; ty <= r.y1; ++ty) {
         for (uint32_t tx = r.x0; tx <= r.x1; ++tx)
           ++counts_[ty * tiles_x_ + tx];
@@ -86,6 +91,10 @@ class Bins {
       next[t] = starts_[t];
     for (uint32_t i = 0; i < rects_.size(); ++i) {
       const TileRect r = rects_[i];
+      if (r.x0 == r.x1 && r.y0 == r.y1) {
+        lists_[next[r.y0 * tiles_x_ + r.x0]++] = refs_[i];
+        continue;
+      }
       for (uint32_t ty = r.y0; ty <= r.y1; ++ty) {
         for (uint32_t tx = r.x0; tx <= r.x1; ++tx)
           lists_[next[ty * tiles_x_ + tx]++] = refs_[i];
