@@ -13,6 +13,7 @@
 // the vectorized setup (setup_kernel.cpp, PixelValues) does the same operations in its lanes.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <type_traits>
 
@@ -36,6 +37,24 @@ static_assert(sizeof(PixelRecord) == 32 && std::is_trivially_default_constructib
 
 // The most pixels a pixel record holds.
 inline constexpr uint32_t kPixelRecordPixels = 3;
+
+// For each set of covered pixels of a 3x3 box (bit (y - y0) * 3 + (x - x0)): the record's
+// `offset` bytes of its first kPixelRecordPixels pixels in row-major order (0 for slots past
+// the last), and in the top byte how many pixels the set holds. The vectorized setup looks
+// its lanes' coverage up here instead of tracking the first pixels while testing them.
+inline constexpr std::array<uint32_t, 512> kFirstPixels = [] {
+  std::array<uint32_t, 512> table{};
+  for (uint32_t mask = 0; mask < 512; ++mask) {
+    uint32_t entry = 0, count = 0;
+    for (uint32_t pixel = 0; pixel < 9; ++pixel) {
+      if ((mask & (1u << pixel)) == 0) continue;
+      if (count < kPixelRecordPixels) entry |= ((pixel / 3) * 4 + pixel % 3) << (8 * count);
+      ++count;
+    }
+    table[mask] = entry | count << 24;
+  }
+  return table;
+}();
 
 // A bin reference with this bit set names a pixel record; without it, a TriangleSetup.
 inline constexpr uint32_t kPixelRecordBit = 0x80000000u;

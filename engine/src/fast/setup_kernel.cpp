@@ -112,20 +112,24 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
   put(7, f32(out.qa_dy[2]), f32(out.qa_dy[3]), i32(out.sample_bits), zero);
 }
 
-// The pixel records of the lanes from l0 whose `count` covered pixels (1 to kPixelRecordPixels)
-// are the first `count` of (box_x[i], box_y[i]) (from the box's first pixel): their depth and
-// colour from the planes Out holds, as the kernels' per-pixel path forms them (centre_depth,
-// pixel_colour and pack_rgba8 in pixel_record.hpp) with the same operations in the same order
-// in float lanes, so the same bits; then PixelRecord's bytes in Out::pixel_words.
-template <class D, class V>
-HWY_INLINE void PixelValues(D d, size_t l0, const V* box_x, const V* box_y, V count, Out& out) {
+// The pixel records of the lanes from l0, whose covered pixels `first` holds as a
+// kFirstPixels entry (pixel_record.hpp: the first ones' offsets in the box and their count;
+// lanes with 1 to kPixelRecordPixels become records): their depth and colour from the planes
+// Out holds, as the kernels' per-pixel path forms them (centre_depth, pixel_colour and
+// pack_rgba8 in pixel_record.hpp) with the same operations in the same order in float lanes, so
+// the same bits; then PixelRecord's bytes in Out::pixel_words. Slots no lane fills are zero.
+template <class D, class VI>
+HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
+  using V = hn::Vec<D>;
   const hn::Rebind<float, D> df;
   const hn::Rebind<int32_t, D> di;
   const hn::Rebind<uint32_t, D> du;
+  const auto count = hn::ShiftRight<24>(first);
   const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
   const auto f32 = [&](const double* p) { return hn::DemoteTo(df, load(p)); };
   const auto zero = hn::Zero(df), one = hn::Set(df, 1.0f);
   const auto flat_f = hn::Ne(f32(out.flat_q), zero);
+  const bool all_flat = hn::AllTrue(df, flat_f);
   const auto z_dx = f32(out.z_dx), z_dy = f32(out.z_dy);
   const V z0 = load(out.z0), z_dx_d = hn::PromoteTo(d, z_dx), z_dy_d = hn::PromoteTo(d, z_dy);
   const auto q0 = f32(out.q0), q_dx = f32(out.q_dx), q_dy = f32(out.q_dy);
@@ -138,13 +142,18 @@ HWY_INLINE void PixelValues(D d, size_t l0, const V* box_x, const V* box_y, V co
   const V x0 = load(out.x0), y0 = load(out.y0);
   const auto x0i = hn::DemoteTo(di, x0), y0i = hn::DemoteTo(di, y0);
   hn::Vec<decltype(du)> z_bits[kPixelRecordPixels], rgba8[kPixelRecordPixels];
-  auto offsets = hn::Zero(du);
   for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
+    z_bits[i] = hn::Zero(du);
+    rgba8[i] = hn::Zero(du);
+  }
+  for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
+    // Most tiny triangles cover one or two pixels: the slots no lane uses are skipped.
+    const auto used = hn::Gt(count, hn::Set(di, static_cast<int32_t>(i)));
+    if (hn::AllFalse(di, used)) break;
     // PixelOffsets: fx, fy from the pixel's block; dx, dy from the block to the box's first pixel.
-    const auto bxi = hn::DemoteTo(di, box_x[i]), byi = hn::DemoteTo(di, box_y[i]);
-    offsets =
-        hn::Or(offsets, hn::ShiftLeftSame(hn::BitCast(du, hn::Add(hn::ShiftLeft<2>(byi), bxi)),
-                                          static_cast<int>(8 * i)));
+    const auto offset =
+        hn::And(hn::ShiftRightSame(first, static_cast<int>(8 * i)), hn::Set(di, 15));
+    const auto bxi = hn::And(offset, hn::Set(di, 3)), byi = hn::ShiftRight<2>(offset);
     const auto xi = hn::Add(x0i, bxi), yi = hn::Add(y0i, byi);
     const auto fxi = hn::And(xi, hn::Set(di, 7)), fyi = hn::And(yi, hn::Set(di, 7));
     const V dx = hn::Sub(hn::PromoteTo(d, hn::Sub(xi, fxi)), x0);
@@ -159,17 +168,26 @@ HWY_INLINE void PixelValues(D d, size_t l0, const V* box_x, const V* box_y, V co
     z_bits[i] = hn::BitCast(du, z_clamped);
     // pixel_colour at the centre (no sample offset).
     const auto fdx = hn::DemoteTo(df, dx), fdy = hn::DemoteTo(df, dy);
-    const auto q_base = hn::Add(q0, hn::Add(hn::Mul(q_dx, fdx), hn::Mul(q_dy, fdy)));
-    const auto q = hn::Add(q_base, hn::Add(hn::Mul(fx, q_dx), hn::Mul(fy, q_dy)));
-    const auto positive = hn::Gt(q, zero);
-    const auto inv_q = hn::Div(one, q);
+    // Where q is not flat, colour = v / q: v * (1 / q) where q > 0. Beyond the horizon
+    // (q <= 0) the first sample is the centre: v / q. That is rare (only float rounding puts a
+    // covered centre there), so divided only when some used lane needs it. Draws with w = 1
+    // everywhere have no q to evaluate.
+    auto q = one, inv_q = one;
+    auto beyond = hn::FirstN(df, 0);
+    bool any_beyond = false;
+    if (!all_flat) {
+      const auto q_base = hn::Add(q0, hn::Add(hn::Mul(q_dx, fdx), hn::Mul(q_dy, fdy)));
+      q = hn::Add(q_base, hn::Add(hn::Mul(fx, q_dx), hn::Mul(fy, q_dy)));
+      inv_q = hn::Div(one, q);
+      beyond = hn::AndNot(hn::Or(flat_f, hn::Gt(q, zero)), hn::RebindMask(df, used));
+      any_beyond = !hn::AllFalse(df, beyond);
+    }
     auto packed = hn::Zero(du);
     for (int c = 0; c < 4; ++c) {
       const auto qa_base = hn::Add(qa0[c], hn::Add(hn::Mul(qa_dx[c], fdx), hn::Mul(qa_dy[c], fdy)));
       const auto v = hn::Add(qa_base, hn::Add(hn::Mul(fx, qa_dx[c]), hn::Mul(fy, qa_dy[c])));
-      // Beyond the horizon (q <= 0) the first sample is the centre: v / q.
-      const auto value =
-          hn::IfThenElse(flat_f, v, hn::IfThenElse(positive, hn::Mul(v, inv_q), hn::Div(v, q)));
+      auto value = all_flat ? v : hn::IfThenElse(flat_f, v, hn::Mul(v, inv_q));
+      if (any_beyond) value = hn::IfThenElse(beyond, hn::Div(v, q), value);
       // to_unorm8.
       const auto scaled = hn::BitCast(
           du, hn::ConvertTo(di, hn::Add(hn::Mul(value, hn::Set(df, 255.0f)), hn::Set(df, 0.5f))));
@@ -183,8 +201,10 @@ HWY_INLINE void PixelValues(D d, size_t l0, const V* box_x, const V* box_y, V co
   }
   const auto i32 = [&](V v) { return hn::BitCast(du, hn::DemoteTo(di, v)); };
   const auto origin = hn::Or(hn::BitCast(du, x0i), hn::ShiftLeft<16>(hn::BitCast(du, y0i)));
-  const auto shape = hn::Or(i32(count), hn::Or(hn::ShiftLeft<2>(i32(hn::Sub(load(out.x1), x0))),
-                                               hn::ShiftLeft<4>(i32(hn::Sub(load(out.y1), y0)))));
+  const auto shape =
+      hn::Or(hn::BitCast(du, count), hn::Or(hn::ShiftLeft<2>(i32(hn::Sub(load(out.x1), x0))),
+                                            hn::ShiftLeft<4>(i32(hn::Sub(load(out.y1), y0)))));
+  const auto offsets = hn::BitCast(du, hn::And(first, hn::Set(di, 0xFFFFFF)));
   static_assert(kPixelRecordPixels == 3);
   hn::StoreInterleaved4(origin, hn::Or(shape, hn::ShiftLeft<8>(offsets)), z_bits[0], z_bits[1], du,
                         out.pixel_words[0] + 4 * l0);
@@ -369,13 +389,10 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   }
   hn::Store(centres, d, out.centres + l0);
   V sample_mask = zero;  // TriangleSetup::sample_bits
-  // One sample (pixel records): the first kPixelRecordPixels covered pixels in row-major
-  // order, from the box's first pixel, and how many pixels are covered.
-  V at_x[kPixelRecordPixels], at_y[kPixelRecordPixels], found = zero;
-  for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
-    at_x[i] = zero;
-    at_y[i] = zero;
-  }
+  // One sample (pixel records): the kFirstPixels entry of the covered pixels, and their count.
+  const hn::Rebind<int32_t, decltype(d)> di;
+  auto first_pixels = hn::Zero(di);
+  V found = zero;
   auto any_pixel = hn::Lt(zero, zero);  // the lanes that become pixel records
   if (sample_bits) {
     // Sample s of a box pixel is inside edge k when E(centre) + a dx_s + b dy_s >= 0, with
@@ -408,14 +425,6 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
                       hn::And(hn::Ge(e[1], least[1][s]), hn::Ge(e[2], least[2][s])));
           const double bit = static_cast<double>(1u << (pixel * samples + s));
           sample_mask = hn::Add(sample_mask, hn::IfThenElseZero(covered, hn::Set(d, bit)));
-          if (samples == 1) {
-            for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
-              const auto here = hn::And(covered, hn::Eq(found, hn::Set(d, static_cast<double>(i))));
-              at_x[i] = hn::IfThenElse(here, hn::Set(d, static_cast<double>(px)), at_x[i]);
-              at_y[i] = hn::IfThenElse(here, hn::Set(d, static_cast<double>(py)), at_y[i]);
-            }
-            found = hn::Add(found, hn::IfThenElseZero(covered, hn::Set(d, 1.0)));
-          }
         }
         for (int k = 0; k < 3; ++k)
           e[k] = hn::Sub(e[k], hn::Mul(edge_dy[k], hn::Set(d, scale)));
@@ -425,7 +434,11 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     }
     any_sample = hn::And(any_sample, hn::Or(hn::Not(fits), hn::Gt(sample_mask, zero)));
     if (samples == 1) {
-      // Pixel records for the lanes with 1 to kPixelRecordPixels covered pixels.
+      // Pixel records for the lanes with 1 to kPixelRecordPixels covered pixels (the mask
+      // holds 9 bits: bit py * 3 + px).
+      first_pixels = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(kFirstPixels.data()),
+                                     hn::DemoteTo(di, sample_mask));
+      found = hn::PromoteTo(d, hn::ShiftRight<24>(first_pixels));
       any_pixel = hn::And(hn::Gt(found, zero),
                           hn::Le(found, hn::Set(d, static_cast<double>(kPixelRecordPixels))));
     }
@@ -466,7 +479,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     plane(hn::Mul(q[0], C[0][c]), hn::Mul(q[1], C[1][c]), hn::Mul(q[2], C[2][c]), out.qa0[c],
           out.qa_dx[c], out.qa_dy[c]);
   }
-  if (!hn::AllFalse(d, any_pixel)) PixelValues(d, l0, at_x, at_y, found, out);
+  if (!hn::AllFalse(d, any_pixel)) PixelValues(d, l0, first_pixels, out);
   // Setup records only for lanes that are binned and not pixel records (the clipper makes its
   // own): often none, with tiny triangles.
   const auto full = hn::AndNot(any_pixel, hn::And(keep, any_sample));
