@@ -6,6 +6,7 @@
 // planes round exactly as the scalar code does. The setups are therefore the same bits on
 // every target. Triangles that a clip plane cuts leave the vector path for the scalar clipper.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -41,15 +42,15 @@ struct Batch {
 
 // Results per lane, written by the vector code, and the records' bytes made from them.
 struct Out {
-  alignas(64) double inside[kMaxLanes], keep[kMaxLanes], any_sample[kMaxLanes];
+  // Lane masks, bit l for lane l: a clip plane cuts the triangle (the scalar clipper sets it
+  // up), it is kept (not culled), it is binned (kept and covering a sample), it is a pixel
+  // record (SetupContext::pixel_records; binned ones only).
+  uint32_t clipped, kept, binned, pixel;
   alignas(64) double x0[kMaxLanes], y0[kMaxLanes], x1[kMaxLanes], y1[kMaxLanes];
   alignas(64) double a[3][kMaxLanes], b[3][kMaxLanes], c[3][kMaxLanes];
   alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes], centres[kMaxLanes],
       sample_bits[kMaxLanes];
-  // SetupContext::pixel_records: where the lane becomes a pixel record, its covered pixels (1
-  // to kPixelRecordPixels; otherwise 0) and the record's bytes, lane l's two 16-byte pieces at
-  // pixel_words[k][4 l].
-  alignas(64) double pixel_count[kMaxLanes];
+  // The pixel records' bytes, lane l's two 16-byte pieces at pixel_words[k][4 l].
   alignas(64) uint32_t pixel_words[2][kMaxLanes * 4];
   alignas(64) double z0[kMaxLanes], z_dx[kMaxLanes], z_dy[kMaxLanes], z_min[kMaxLanes],
       z_max[kMaxLanes];
@@ -66,6 +67,16 @@ HWY_INLINE V round_to_int(D d, V v) {
   // Ties to even for |v| < 2^51, as triangle_setup.cpp's round_to_int.
   const auto magic = hn::Set(d, 6755399441055744.0);
   return hn::Sub(hn::Add(v, magic), magic);
+}
+
+// A mask's lanes as bits (at most 32 lanes: kMaxLanes).
+template <class D, class M>
+HWY_INLINE uint32_t mask_bits(D d, M m) {
+  uint8_t bytes[8] = {};
+  hn::StoreMaskBits(d, m, bytes);
+  uint32_t bits;
+  std::memcpy(&bits, bytes, sizeof(bits));
+  return bits;
 }
 
 // A mask as 1.0 / 0.0 per lane, to store.
@@ -307,8 +318,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   const V by1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_y, reach(ctx.sample_dy_lo)), inv_scale)),
                         hn::Set(d, ctx.height - 1.0));
   auto any_sample = hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1));
-  hn::Store(as_double_mask(d, inside), d, out.inside + l0);
-  hn::Store(as_double_mask(d, keep), d, out.keep + l0);
+  out.clipped |= mask_bits(d, hn::Not(inside)) << l0;
+  out.kept |= mask_bits(d, keep) << l0;
   hn::Store(bx0, d, out.x0 + l0);
   hn::Store(by0, d, out.y0 + l0);
   hn::Store(bx1, d, out.x1 + l0);
@@ -449,8 +460,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   }
   // At one sample the bits are the pixel records' centres, and the setups carry none.
   hn::Store(ctx.samples == 1 ? zero : sample_mask, d, out.sample_bits + l0);
-  hn::Store(hn::IfThenElseZero(any_pixel, found), d, out.pixel_count + l0);
-  hn::Store(as_double_mask(d, any_sample), d, out.any_sample + l0);
+  out.binned |= mask_bits(d, hn::And(keep, any_sample)) << l0;
+  out.pixel |= mask_bits(d, any_pixel) << l0;
 
   auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {
     hn::Store(
@@ -490,6 +501,7 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
   const hn::ScalableTag<double> d;
   const hn::Rebind<float, decltype(d)> df;
   const auto one = hn::Set(df, 1.0f);
+  out.clipped = out.kept = out.binned = out.pixel = 0;
   for (size_t l0 = 0; l0 < lanes_used; l0 += hn::Lanes(d)) {
     hn::Vec<decltype(df)> pos[3][4];  // x, y, z, w of each vertex
     auto unit_w = hn::Eq(one, one);
@@ -576,8 +588,18 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
     setups.resize(next + used);
     size_t next_pixel = pixels.size();
     if (ctx.pixel_records) pixels.resize(next_pixel + used);
-    for (size_t l = 0; l < used; ++l) {
-      if (out.inside[l] == 0.0) {
+    // The lanes' outcomes counted at once; then only the lanes with records are visited, in
+    // order (submission order in the bins). With half of a dense mesh's tiny triangles
+    // covering no pixel centre, a branch per lane on it mispredicts often.
+    const uint32_t lane_bits = used >= 32 ? ~0u : (1u << used) - 1;
+    const uint32_t clipped = out.clipped & lane_bits, kept = out.kept & lane_bits;
+    const auto unclipped = static_cast<uint64_t>(std::popcount(lane_bits & ~clipped));
+    counters.triangles_submitted += unclipped;
+    counters.triangles_rasterized += static_cast<uint64_t>(std::popcount(kept));
+    counters.triangles_culled += unclipped - static_cast<uint64_t>(std::popcount(kept));
+    for (uint32_t visit = (out.binned & lane_bits) | clipped; visit != 0; visit &= visit - 1) {
+      const size_t l = static_cast<size_t>(std::countr_zero(visit));
+      if ((clipped >> l) & 1) {
         // A clip plane cuts this triangle: the scalar path clips it (and counts it), after the
         // records before it.
         setups.resize(next);
@@ -599,17 +621,10 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         setups.resize(next + used - l - 1);
         continue;
       }
-      ++counters.triangles_submitted;
-      if (out.keep[l] == 0.0) {
-        ++counters.triangles_culled;
-        continue;
-      }
-      ++counters.triangles_rasterized;
-      if (out.any_sample[l] == 0.0) continue;  // covers no sample
       const binning::TileRect tiles = tile_rect(
           static_cast<uint32_t>(out.x0[l]), static_cast<uint32_t>(out.y0[l]),
           static_cast<uint32_t>(out.x1[l]), static_cast<uint32_t>(out.y1[l]), ctx.bin_tile_log2);
-      if (out.pixel_count[l] != 0.0) {
+      if ((out.pixel >> l) & 1) {
         char* record = reinterpret_cast<char*>(&pixels[next_pixel]);
         for (int k = 0; k < 2; ++k)
           stream_piece(out.pixel_words[k] + 4 * l, record + 16 * k);
