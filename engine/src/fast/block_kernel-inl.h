@@ -39,6 +39,8 @@
 
 #include <hwy/highway.h>
 
+#include "engine/src/fast/unorm8-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace tessera::fast::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
@@ -110,16 +112,6 @@ HWY_INLINE VF plane_of_lanes(DF df, VF fx, VF fy, const float* offsets, float ba
   } else {
     return plane_at(df, fx, fy, base, gx, gy);
   }
-}
-
-// Float colour to unorm8 as to_unorm8 does for finite values: clamp to [0, 1], then
-// truncate(c * 255 + 0.5) (multiply, then add: never fused, the build forbids contraction).
-template <class DF, class VF>
-HWY_INLINE auto to_unorm8(DF df, VF c) {
-  const hn::RebindToUnsigned<DF> du;
-  const auto clamped = hn::Min(hn::Max(c, hn::Zero(df)), hn::Set(df, 1.0f));
-  const auto scaled = hn::Add(hn::Mul(clamped, hn::Set(df, 255.0f)), hn::Set(df, 0.5f));
-  return hn::BitCast(du, hn::ConvertTo(hn::RebindToSigned<DF>(), scaled));
 }
 
 enum class HizVerdict { kTest, kReject, kAccept };

@@ -24,6 +24,7 @@
 #include <hwy/highway.h>
 
 #include "engine/src/fast/block_kernel.hpp"
+#include "engine/src/fast/unorm8-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace tessera::fast::HWY_NAMESPACE {
@@ -126,9 +127,11 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
 // The pixel records of the lanes from l0, whose covered pixels `first` holds as a
 // kFirstPixels entry (pixel_record.hpp: the first ones' offsets in the box and their count;
 // lanes with 1 to kPixelRecordPixels become records): their depth and colour from the planes
-// Out holds, as the kernels' per-pixel path forms them (centre_depth, pixel_colour and
-// pack_rgba8 in pixel_record.hpp) with the same operations in the same order in float lanes, so
-// the same bits; then PixelRecord's bytes in Out::pixel_words. Slots no lane fills are zero.
+// Out holds, as the kernels' per-pixel path forms them (centre_depth and pixel_colour in
+// pixel_record.hpp) with the same operations in the same order in float lanes, so the same
+// bits, and converted to unorm8 as the kernels' lanes do (unorm8-inl.h: for finite values the
+// same bytes as pack_rgba8); then PixelRecord's bytes in Out::pixel_words. Slots no lane fills
+// are zero.
 template <class D, class VI>
 HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
   using V = hn::Vec<D>;
@@ -199,14 +202,7 @@ HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
       const auto v = hn::Add(qa_base, hn::Add(hn::Mul(fx, qa_dx[c]), hn::Mul(fy, qa_dy[c])));
       auto value = all_flat ? v : hn::IfThenElse(flat_f, v, hn::Mul(v, inv_q));
       if (any_beyond) value = hn::IfThenElse(beyond, hn::Div(v, q), value);
-      // to_unorm8.
-      const auto scaled = hn::BitCast(
-          du, hn::ConvertTo(di, hn::Add(hn::Mul(value, hn::Set(df, 255.0f)), hn::Set(df, 0.5f))));
-      const auto unorm = hn::IfThenElse(
-          hn::RebindMask(du, hn::Gt(value, zero)),
-          hn::IfThenElse(hn::RebindMask(du, hn::Ge(value, one)), hn::Set(du, 255u), scaled),
-          hn::Zero(du));
-      packed = hn::Or(packed, hn::ShiftLeftSame(unorm, 8 * c));
+      packed = hn::Or(packed, hn::ShiftLeftSame(to_unorm8(df, value), 8 * c));
     }
     rgba8[i] = packed;
   }
