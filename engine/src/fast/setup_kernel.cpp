@@ -44,8 +44,8 @@ struct Batch {
 // Results per lane, written by the vector code, and the records' bytes made from them.
 struct Out {
   // Lane masks, bit l for lane l: a clip plane cuts the triangle (the scalar clipper sets it
-  // up), it is kept (not culled), it is binned (kept and covering a sample), it is a pixel
-  // record (SetupContext::pixel_records; binned ones only).
+  // up), it is kept (not culled), it is binned (kept and covering a sample), its record is a
+  // pixel record (SetupContext::pixel_records; read for binned lanes only).
   uint32_t clipped, kept, binned, pixel;
   alignas(64) double x0[kMaxLanes], y0[kMaxLanes], x1[kMaxLanes], y1[kMaxLanes];
   alignas(64) double a[3][kMaxLanes], b[3][kMaxLanes], c[3][kMaxLanes];
