@@ -34,6 +34,7 @@ struct Options {
   bool no_counters = false;
   bool reversed_z = false;
   bool no_hiz = false;
+  bool no_records = false;
   uint32_t bin_tile = 64;
   uint32_t block_size = 8;
   bool sub_blocks = false;
@@ -288,6 +289,7 @@ int run(const Options& o, const CLI::App& app) {
   renderer_options.threads = o.threads;
   renderer_options.raster_counters = !o.no_counters;
   renderer_options.hiz = !o.no_hiz;
+  renderer_options.tiny_triangle_records = !o.no_records;
   renderer_options.bin_tile_size = o.bin_tile;
   renderer_options.block_size = o.block_size;
   renderer_options.sub_block_tests = o.sub_blocks;
@@ -422,6 +424,8 @@ int main(int argc, char** argv) {
       ->excludes(stats);
   app.add_flag("--no-depth", o.no_depth, "no depth test: later triangles overwrite earlier ones");
   app.add_flag("--no-hiz", o.no_hiz, "fast engine: no Hi-Z block rejection and acceptance");
+  app.add_flag("--no-records", o.no_records,
+               "fast engine: full setups for tiny triangles instead of pixel and sample records");
   app.add_option("--bin-tile", o.bin_tile, "fast engine: bin tile side in pixels")
       ->check(CLI::IsMember({32u, 64u, 128u}))
       ->capture_default_str();

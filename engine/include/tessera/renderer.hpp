@@ -70,6 +70,13 @@ struct RendererOptions {
   // tested. Same image; off by default because the scalar test costs more than the vector edge
   // compares it saves (benchmarks/RESULTS.md).
   bool sub_block_tests = false;
+  // Tiny-triangle records: a triangle whose bounding box is at most 3x3 pixels and which
+  // covers at most three pixel centres (one sample), or has covered samples in at most four
+  // pixels (two and four samples), is set up as its pixels' depth and colour values, a 32- or
+  // 64-byte record read in one cache line, instead of a 160-byte setup the kernels evaluate.
+  // Only for RGBA8 or no colour. Same image (the values are the kernels'); off, every
+  // triangle gets the full setup (benchmarks/RESULTS.md measures what they buy).
+  bool tiny_triangle_records = true;
 };
 
 // One draw call's vertex data, all in caller-owned memory that the renderer only reads.

@@ -937,16 +937,21 @@ HWY_INLINE bool pixel_depth_passes(const TileContext& tc, size_t block, size_t i
   return true;
 }
 
-// Writes a pixel's colour to its samples in `samples` (bit s: sample s), the pixel's value at
-// `index` in sample plane 0.
+// Writes a pixel's RGBA8 colour to its samples in `samples` (bit s: sample s), the pixel's
+// value at `index` in sample plane 0.
+HWY_INLINE void write_packed(const TileContext& tc, size_t index, uint32_t samples,
+                             uint32_t packed) {
+  uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + index;
+  for (uint32_t rest = samples; rest != 0; rest &= rest - 1)
+    colour[std::countr_zero(rest) * kSamplePlane] = packed;
+}
+
+// The same for a colour as channels, in the target's format.
 template <ColorMode kColor>
 HWY_INLINE void write_pixel(const TileContext& tc, size_t index, uint32_t samples,
                             const float (&channel)[4]) {
   if constexpr (kColor == ColorMode::kRGBA8) {
-    const uint32_t packed = pack_rgba8(channel);
-    uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + index;
-    for (uint32_t rest = samples; rest != 0; rest &= rest - 1)
-      colour[std::countr_zero(rest) * kSamplePlane] = packed;
+    write_packed(tc, index, samples, pack_rgba8(channel));
   } else {
     for (uint32_t rest = samples; rest != 0; rest &= rest - 1)
       std::copy(channel, channel + 4,
@@ -1040,6 +1045,32 @@ void RasterPixels(const TileContext& tc, const PixelRecord& r, Counters& counter
   }
 }
 
+// The samples in `cov` (bit s: sample s) of the pixel at `index` of `block` that pass the depth
+// test, and with kTestWrite their depth written (the block's Hi-Z bounds then out of date).
+// Each sample's depth is raster_block's sum for its lane: the plane's base at the block's
+// first pixel (z_base), plus the sample's offset (set_up_state's), plus the pixel's offset in
+// the block, clamped and rounded as the lanes are.
+template <DepthMode kDepth>
+HWY_INLINE uint32_t samples_depth_pass(const TileContext& tc, size_t block, size_t index,
+                                       uint32_t cov, float z_base, float z_dx, float z_dy) {
+  const float fx = static_cast<float>(index & 7), fy = static_cast<float>((index >> 3) & 7);
+  const float z_rel = fx * z_dx + fy * z_dy;
+  uint32_t pass = 0;
+  for (uint32_t rest = cov; rest != 0; rest &= rest - 1) {
+    const uint32_t s = static_cast<uint32_t>(std::countr_zero(rest));
+    const float z_offset = z_dx * tc.sample_fx[s] + z_dy * tc.sample_fy[s];
+    float z = (z_base + z_offset) + z_rel;
+    z = z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;  // hn::Min(hn::Max(z, 0), 1)
+    if (tc.depth_scale > 0.0f) z = std::nearbyint(z * tc.depth_scale);
+    float& stored = tc.depth[s * kSamplePlane + index];
+    const bool passes = detail::depth_passes(tc.compare, z, stored);
+    pass |= passes ? 1u << s : 0u;
+    if constexpr (kDepth == DepthMode::kTestWrite) stored = passes ? z : stored;
+  }
+  if (kDepth == DepthMode::kTestWrite && pass != 0) mark_hiz_dirty(tc, block);
+  return pass;
+}
+
 // Two or four samples per pixel, and a triangle whose box is at most 3x3 pixels: its covered
 // samples (`sample_bits`, bit ((y - y0) * 3 + (x - x0)) * samples + s) in this tile are
 // depth-tested one by one and each pixel with a passing sample shaded once, with no lanes to
@@ -1062,31 +1093,15 @@ HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Co
     const PixelSite site(tc, t.x0, t.y0, x, y);
     const size_t block = site.block, index = site.index;
     const PixelOffsets offsets(t, x, y);
-    const float fx = offsets.fx, fy = offsets.fy;
-    const double dx = offsets.dx, dy = offsets.dy;
     if constexpr (kCount) {
       covered += static_cast<uint32_t>(std::popcount(cov));
       blocks |= site.block_bit;
     }
     uint32_t pass = cov;
     if constexpr (kDepth != DepthMode::kOff) {
-      const float z_base = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
-      const float z_rel = fx * t.z_dx + fy * t.z_dy;
-      pass = 0;
-      for (uint32_t rest = cov; rest != 0; rest &= rest - 1) {
-        const uint32_t s = static_cast<uint32_t>(std::countr_zero(rest));
-        // set_up_state's offset, then raster_block's sum.
-        const float z_offset = t.z_dx * tc.sample_fx[s] + t.z_dy * tc.sample_fy[s];
-        float z = (z_base + z_offset) + z_rel;
-        z = z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;  // hn::Min(hn::Max(z, 0), 1)
-        if (tc.depth_scale > 0.0f) z = std::nearbyint(z * tc.depth_scale);
-        float& stored = tc.depth[s * kSamplePlane + index];
-        const bool passes = detail::depth_passes(tc.compare, z, stored);
-        pass |= passes ? 1u << s : 0u;
-        if constexpr (kDepth == DepthMode::kTestWrite) stored = passes ? z : stored;
-      }
+      const float z_base = static_cast<float>(t.z0 + t.z_dx * offsets.dx + t.z_dy * offsets.dy);
+      pass = samples_depth_pass<kDepth>(tc, block, index, cov, z_base, t.z_dx, t.z_dy);
       if (pass == 0) continue;
-      if constexpr (kDepth == DepthMode::kTestWrite) mark_hiz_dirty(tc, block);
     }
     if constexpr (kCount) passed += static_cast<uint32_t>(std::popcount(pass));
     if constexpr (kColor != ColorMode::kOff) {
@@ -1099,6 +1114,44 @@ HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Co
   }
   if constexpr (kCount) {
     count_pixels(tc, t.x0, t.y0, t.x1, t.y1, blocks, covered, passed, shaded, counters);
+  }
+}
+
+// A sample record (pixel_record.hpp): its pixels in this tile, each covered sample's depth
+// tested with the value raster_samples forms for it from the same floats, and the colour the
+// setup computed written to the passing samples.
+template <DepthMode kDepth, ColorMode kColor, bool kCount>
+void RasterSamples(const TileContext& tc, const SampleRecord& r, Counters& counters) {
+  static_assert(kColor != ColorMode::kRGBA32F, "sample records hold RGBA8 colour");
+  const int32_t x0 = r.x0, y0 = r.y0;
+  const uint32_t n = r.shape & 7u;
+  uint32_t covered = 0, passed = 0, shaded = 0, blocks = 0;  // as count_pixels takes them
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t place = (r.offsets >> (4 * i)) & 15u;
+    const int32_t x = x0 + static_cast<int32_t>(place & 3),
+                  y = y0 + static_cast<int32_t>(place >> 2);
+    if (x < tc.x0 || x > tc.x1 || y < tc.y0 || y > tc.y1) continue;  // another tile's
+    const uint32_t cov = (r.coverage >> (4 * i)) & 15u;
+    const PixelSite site(tc, x0, y0, x, y);
+    if constexpr (kCount) {
+      covered += static_cast<uint32_t>(std::popcount(cov));
+      blocks |= site.block_bit;
+    }
+    uint32_t pass = cov;
+    if constexpr (kDepth != DepthMode::kOff) {
+      pass =
+          samples_depth_pass<kDepth>(tc, site.block, site.index, cov, r.z_base[i], r.z_dx, r.z_dy);
+      if (pass == 0) continue;
+    }
+    if constexpr (kCount) {
+      passed += static_cast<uint32_t>(std::popcount(pass));
+      shaded += kColor != ColorMode::kOff ? 1 : 0;
+    }
+    if constexpr (kColor == ColorMode::kRGBA8) write_packed(tc, site.index, pass, r.rgba8[i]);
+  }
+  if constexpr (kCount) {
+    count_pixels(tc, x0, y0, x0 + ((r.shape >> 3) & 3), y0 + ((r.shape >> 5) & 3), blocks, covered,
+                 passed, shaded, counters);
   }
 }
 
@@ -1141,15 +1194,19 @@ void fill_multi(KernelTable& t) {
         &RasterPixels<kDepth, kColor, false>;
     t.pixel_kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][1] =
         &RasterPixels<kDepth, kColor, true>;
+    t.sample_kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][0] =
+        &RasterSamples<kDepth, kColor, false>;
+    t.sample_kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][1] =
+        &RasterSamples<kDepth, kColor, true>;
   }
 }
 
 }  // namespace
 
 // The twelve triangle kernels of depth mode kDepth (every colour mode, single or multisample,
-// counting or not) into table.kernels[kDepth], and its four pixel-record kernels into
-// table.pixel_kernels[kDepth]. Each block_kernel_depth_*.cpp instantiates it
-// for its mode; block_kernel.cpp calls the three.
+// counting or not) into table.kernels[kDepth], and its four pixel-record and four
+// sample-record kernels into table.pixel_kernels[kDepth] and table.sample_kernels[kDepth]. Each
+// block_kernel_depth_*.cpp instantiates it for its mode; block_kernel.cpp calls the three.
 template <DepthMode kDepth>
 void FillDepthKernels(KernelTable& table) {
   fill_multi<kDepth, ColorMode::kOff>(table);

@@ -65,12 +65,15 @@ struct TileContext {
 
 using TriangleKernel = void (*)(const TileContext&, const TriangleSetup&, Counters&);
 using PixelKernel = void (*)(const TileContext&, const PixelRecord&, Counters&);
+using SampleKernel = void (*)(const TileContext&, const SampleRecord&, Counters&);
 
 struct KernelTable {
   // [depth][colour][multisample][counting]
   TriangleKernel kernels[kDepthModes][kColorModes][2][2];
   // [depth][colour][counting]: one sample, and no colour or RGBA8 (null for RGBA32F).
   PixelKernel pixel_kernels[kDepthModes][kColorModes][2];
+  // [depth][colour][counting]: two or four samples, and no colour or RGBA8 (null for RGBA32F).
+  SampleKernel sample_kernels[kDepthModes][kColorModes][2];
 };
 
 // The kernels compiled for a Highway target bit (see simd/dispatch.hpp).
@@ -87,6 +90,12 @@ inline TriangleKernel triangle_kernel(const KernelTable& table, DepthMode depth,
 inline PixelKernel pixel_kernel(const KernelTable& table, DepthMode depth, ColorMode color,
                                 bool count) {
   return table.pixel_kernels[static_cast<int>(depth)][static_cast<int>(color)][count ? 1 : 0];
+}
+
+// The kernel for sample records, or null where a draw's state has none.
+inline SampleKernel sample_kernel(const KernelTable& table, DepthMode depth, ColorMode color,
+                                  bool count) {
+  return table.sample_kernels[static_cast<int>(depth)][static_cast<int>(color)][count ? 1 : 0];
 }
 
 }  // namespace tessera::fast

@@ -32,8 +32,9 @@ namespace {
 constexpr size_t kMinChunkTriangles = 4096;
 
 struct Chunk {
-  SetupList setups;  // reserved to the pass's capacity: never grows past the budget
-  PixelList pixels;  // reserved as setups (each triangle takes one or the other)
+  SetupList setups;    // reserved to the pass's capacity: never grows past the budget
+  PixelList pixels;    // reserved as setups at one sample (each triangle takes one or the other)
+  SampleList samples;  // reserved as setups at two and four samples
   binning::Bins bins;
   Counters counters;
   size_t begin = 0, end = 0;  // triangles of the draw given to this chunk
@@ -56,6 +57,7 @@ struct FastRasterizer::State {
   uint64_t budget = 0;
   bool count = true;  // raster counters
   bool hiz = true;
+  bool records = true;  // pixel and sample records for tiny triangles
   uint32_t bin_tile_log2 = binning::kTileSizeLog2;
   uint32_t coarse_blocks = 1;  // 8x8 blocks per side of the blocks the corner test classifies
   bool sub_blocks = false;
@@ -74,6 +76,7 @@ FastRasterizer::FastRasterizer(int64_t simd_target, const RendererOptions& optio
   state_->budget = options.bin_memory_budget;
   state_->count = options.raster_counters;
   state_->hiz = options.hiz;
+  state_->records = options.tiny_triangle_records;
   state_->bin_tile_log2 = static_cast<uint32_t>(std::countr_zero(options.bin_tile_size));
   state_->coarse_blocks = options.block_size / detail::kBlockSize;
   state_->sub_blocks = options.sub_block_tests;
@@ -121,7 +124,11 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
                           : fb.desc.color_format == ColorFormat::kRGBA8 ? ColorMode::kRGBA8
                                                                         : ColorMode::kRGBA32F;
   const TriangleKernel kernel = triangle_kernel(*st.kernels, depth, color, samples > 1, st.count);
-  const PixelKernel pixels_kernel = pixel_kernel(*st.kernels, depth, color, st.count);
+  const PixelKernel pixels_kernel =
+      st.records && samples == 1 ? pixel_kernel(*st.kernels, depth, color, st.count) : nullptr;
+  const SampleKernel samples_kernel = st.records && (samples == 2 || samples == 4)
+                                          ? sample_kernel(*st.kernels, depth, color, st.count)
+                                          : nullptr;
   const CompareOp op = pipeline.depth_compare;
   draw.hiz = st.hiz && pipeline.depth_test &&
              (op == CompareOp::kLess || op == CompareOp::kLessEqual || op == CompareOp::kGreater ||
@@ -138,7 +145,8 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.check_finite = check_finite;
   ctx.bin_tile_log2 = grid.size_log2;
   ctx.samples = samples;
-  ctx.pixel_records = samples == 1 && pixels_kernel != nullptr;
+  ctx.pixel_records = pixels_kernel != nullptr;
+  ctx.sample_records = samples_kernel != nullptr;
   for (uint32_t s = 0; s < samples; ++s) {
     ctx.sample_dx[s] = pattern[s].dx;
     ctx.sample_dy[s] = pattern[s].dy;
@@ -177,9 +185,10 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   for (Counters& c : st.raster_counters)
     c = {};
 
-  // A triangle's setup or pixel record (both are reserved for each) and its bin entry.
-  constexpr uint64_t kTriangleBytes =
-      sizeof(TriangleSetup) + sizeof(PixelRecord) + binning::Bins::kBytesPerTriangle;
+  // A triangle's setup or record (both are reserved for each) and its bin entry.
+  const uint64_t triangle_bytes =
+      sizeof(TriangleSetup) + (ctx.sample_records ? sizeof(SampleRecord) : sizeof(PixelRecord)) +
+      binning::Bins::kBytesPerTriangle;
   constexpr uint64_t kReferenceBytes = binning::Bins::kBytesPerReference;
   constexpr size_t kBatch = 256;
   // A triangle cut by clip planes becomes at most kMaxClipVertices - 2 pieces.
@@ -193,12 +202,12 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     const double refs_per_triangle = std::max(st.references_per_triangle, 1.0);
     // (Below kPixelRecordBit: a reference is an index with that bit free.)
     const uint64_t setup_capacity = std::clamp<uint64_t>(
-        static_cast<uint64_t>(static_cast<double>(room) /
-                              (kTriangleBytes + refs_per_triangle * kReferenceBytes)),
+        static_cast<uint64_t>(static_cast<double>(room) / (static_cast<double>(triangle_bytes) +
+                                                           refs_per_triangle * kReferenceBytes)),
         kMaxPieces, kPixelRecordBit - 1);
     const uint64_t reference_capacity =
-        std::max<uint64_t>(room > setup_capacity * kTriangleBytes
-                               ? (room - setup_capacity * kTriangleBytes) / kReferenceBytes
+        std::max<uint64_t>(room > setup_capacity * triangle_bytes
+                               ? (room - setup_capacity * triangle_bytes) / kReferenceBytes
                                : 0,
                            tiles);
     const size_t remaining = triangles - start;
@@ -214,13 +223,14 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
         Chunk& chunk = st.chunks[c];
         chunk.setups.clear();
         chunk.pixels.clear();
+        chunk.samples.clear();
         chunk.bins.reset(grid.tile_count(), grid.tiles_x);
         chunk.counters = {};
         chunk.stopped_at = chunk.end;
         chunk.non_finite = false;
         // Bytes the chunk holds with `setups` setups of capacity and `references` references.
         const auto held = [&](uint64_t setups, uint64_t references) {
-          return setups * kTriangleBytes +
+          return setups * triangle_bytes +
                  std::max<uint64_t>(chunk.bins.reference_capacity(), references) * kReferenceBytes +
                  fixed;
         };
@@ -228,6 +238,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
           // Capacity kept from a draw with fewer chunks or a smaller grid: start afresh.
           SetupList().swap(chunk.setups);
           PixelList().swap(chunk.pixels);
+          SampleList().swap(chunk.samples);
           chunk.bins.release();
         }
         size_t t = chunk.begin;
@@ -246,6 +257,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
             if (held(grown, chunk.bins.references()) <= chunk_budget || chunk.setups.empty()) {
               chunk.setups.reserve(grown);
               if (ctx.pixel_records) chunk.pixels.reserve(grown);
+              if (ctx.sample_records) chunk.samples.reserve(grown);
               chunk.bins.reserve_triangles(chunk.setups.capacity());
             }
           }
@@ -253,10 +265,11 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
               batch, std::max<size_t>((chunk.setups.capacity() - binned) / kMaxPieces, 1));
           const size_t batch_end = std::min(chunk.end, t + batch);
           const size_t first = binned;
-          const size_t first_setup = chunk.setups.size(), first_pixel = chunk.pixels.size();
+          const size_t first_setup = chunk.setups.size(), first_pixel = chunk.pixels.size(),
+                       first_sample = chunk.samples.size();
           const Counters before = chunk.counters;
-          if (!st.setup(ctx, input, t, batch_end, chunk.setups, chunk.pixels, chunk.bins,
-                        chunk.counters)) {
+          if (!st.setup(ctx, input, t, batch_end, chunk.setups, chunk.pixels, chunk.samples,
+                        chunk.bins, chunk.counters)) {
             // A NaN or infinity (ctx.check_finite): the draw stops with validation's error.
             chunk.non_finite = true;
             chunk.stopped_at = t;
@@ -269,6 +282,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
             // Undo the batch; retry smaller, or end the chunk's part of this pass here.
             chunk.setups.resize(first_setup);
             chunk.pixels.resize(first_pixel);
+            chunk.samples.resize(first_sample);
             chunk.bins.truncate(first);
             chunk.counters = before;
             if (first > 0) {
@@ -311,7 +325,8 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     std::vector<ChunkView> views(kept);
     uint64_t kept_setups = 0, kept_references = 0;
     for (size_t c = 0; c < kept; ++c) {
-      views[c] = {st.chunks[c].setups.data(), st.chunks[c].pixels.data(), &st.chunks[c].bins};
+      views[c] = {st.chunks[c].setups.data(), st.chunks[c].pixels.data(),
+                  st.chunks[c].samples.data(), &st.chunks[c].bins};
       const Counters& cc = st.chunks[c].counters;
       counters.triangles_submitted += cc.triangles_submitted;
       counters.triangles_culled += cc.triangles_culled;
@@ -334,8 +349,8 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       tbb::parallel_for(tbb::blocked_range<uint32_t>(0, grid.tile_count(), 1),
                         [&](const tbb::blocked_range<uint32_t>& r) {
                           for (uint32_t tile = r.begin(); tile != r.end(); ++tile) {
-                            raster_tile(draw, kernel, pixels_kernel, fb, grid, tile, views,
-                                        st.raster_counters.local());
+                            raster_tile(draw, kernel, pixels_kernel, samples_kernel, fb, grid, tile,
+                                        views, st.raster_counters.local());
                           }
                         });
     });

@@ -45,14 +45,17 @@ struct Batch {
 struct Out {
   // Lane masks, bit l for lane l: a clip plane cuts the triangle (the scalar clipper sets it
   // up), it is kept (not culled), it is binned (kept and covering a sample), its record is a
-  // pixel record (SetupContext::pixel_records; read for binned lanes only).
+  // pixel or sample record (SetupContext::pixel_records, sample_records; read for binned lanes
+  // only).
   uint32_t clipped, kept, binned, pixel;
   alignas(64) double x0[kMaxLanes], y0[kMaxLanes], x1[kMaxLanes], y1[kMaxLanes];
   alignas(64) double a[3][kMaxLanes], b[3][kMaxLanes], c[3][kMaxLanes];
   alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes], centres[kMaxLanes],
       sample_bits[kMaxLanes];
-  // The pixel records' bytes, lane l's two 16-byte pieces at pixel_words[k][4 l].
+  // The pixel records' bytes, lane l's two 16-byte pieces at pixel_words[k][4 l]; the sample
+  // records', its four at sample_words[k][4 l].
   alignas(64) uint32_t pixel_words[2][kMaxLanes * 4];
+  alignas(64) uint32_t sample_words[4][kMaxLanes * 4];
   alignas(64) double z0[kMaxLanes], z_dx[kMaxLanes], z_dy[kMaxLanes], z_min[kMaxLanes],
       z_max[kMaxLanes];
   alignas(64) double q0[kMaxLanes], q_dx[kMaxLanes], q_dy[kMaxLanes];
@@ -124,20 +127,21 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
   put(7, f32(out.qa_dy[2]), f32(out.qa_dy[3]), i32(out.sample_bits), zero);
 }
 
-// The pixel records of the lanes from l0, whose covered pixels `first` holds as a
-// kFirstPixels entry (pixel_record.hpp: the first ones' offsets in the box and their count;
-// lanes with 1 to kPixelRecordPixels become records): their depth and colour from the planes
-// Out holds, as the kernels' per-pixel path forms them (centre_depth and pixel_colour in
-// pixel_record.hpp) with the same operations in the same order in float lanes, so the same
-// bits, and converted to unorm8 as the kernels' lanes do (unorm8-inl.h: for finite values the
-// same bytes as pack_rgba8); then PixelRecord's bytes in Out::pixel_words. Slots no lane fills
-// are zero.
-template <class D, class VI>
-HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
+// The values of the record pixels of the lanes from l0, whose pixels `first` holds as a
+// first_pixels_table entry (pixel_record.hpp: the places of the first kSlots ones, kBits bits
+// each, and their count): each pixel's depth and colour from the planes Out holds, as the
+// kernels' per-pixel path forms them (centre_depth and pixel_colour in pixel_record.hpp) with
+// the same operations in the same order in float lanes, so the same bits, and converted to
+// unorm8 as the kernels' lanes do (unorm8-inl.h: for finite values the same bytes as
+// pack_rgba8). For each slot some lane uses, slot(i, place, z_base, z, rgba8) gets the
+// pixels' places in the box, the depth plane at their block's first pixel, the depth at their
+// centre (clamped) and the packed colour. Returns the lanes with a used pixel whose centre is
+// beyond the horizon (q <= 0), where the colour is v / q at the centre.
+template <uint32_t kSlots, int kBits, class D, class VI, class Slot>
+HWY_INLINE auto RecordValues(D d, size_t l0, VI first, const Out& out, const Slot& slot) {
   using V = hn::Vec<D>;
   const hn::Rebind<float, D> df;
   const hn::Rebind<int32_t, D> di;
-  const hn::Rebind<uint32_t, D> du;
   const auto count = hn::ShiftRight<24>(first);
   const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
   const auto f32 = [&](const double* p) { return hn::DemoteTo(df, load(p)); };
@@ -155,19 +159,15 @@ HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
   }
   const V x0 = load(out.x0), y0 = load(out.y0);
   const auto x0i = hn::DemoteTo(di, x0), y0i = hn::DemoteTo(di, y0);
-  hn::Vec<decltype(du)> z_bits[kPixelRecordPixels], rgba8[kPixelRecordPixels];
-  for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
-    z_bits[i] = hn::Zero(du);
-    rgba8[i] = hn::Zero(du);
-  }
-  for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
+  auto any_beyond_lanes = hn::FirstN(df, 0);
+  for (uint32_t i = 0; i < kSlots; ++i) {
     // Most tiny triangles cover one or two pixels: the slots no lane uses are skipped.
     const auto used = hn::Gt(count, hn::Set(di, static_cast<int32_t>(i)));
     if (hn::AllFalse(di, used)) break;
     // PixelOffsets: fx, fy from the pixel's block; dx, dy from the block to the box's first pixel.
-    const auto offset =
-        hn::And(hn::ShiftRightSame(first, static_cast<int>(8 * i)), hn::Set(di, 15));
-    const auto bxi = hn::And(offset, hn::Set(di, 3)), byi = hn::ShiftRight<2>(offset);
+    const auto place =
+        hn::And(hn::ShiftRightSame(first, static_cast<int>(kBits * i)), hn::Set(di, 15));
+    const auto bxi = hn::And(place, hn::Set(di, 3)), byi = hn::ShiftRight<2>(place);
     const auto xi = hn::Add(x0i, bxi), yi = hn::Add(y0i, byi);
     const auto fxi = hn::And(xi, hn::Set(di, 7)), fyi = hn::And(yi, hn::Set(di, 7));
     const V dx = hn::Sub(hn::PromoteTo(d, hn::Sub(xi, fxi)), x0);
@@ -179,7 +179,6 @@ HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
     const auto z = hn::Add(z_base, hn::Add(hn::Mul(fx, z_dx), hn::Mul(fy, z_dy)));
     const auto z_clamped =
         hn::IfThenElse(hn::Gt(z, zero), hn::IfThenElse(hn::Lt(z, one), z, one), zero);
-    z_bits[i] = hn::BitCast(du, z_clamped);
     // pixel_colour at the centre (no sample offset).
     const auto fdx = hn::DemoteTo(df, dx), fdy = hn::DemoteTo(df, dy);
     // Where q is not flat, colour = v / q: v * (1 / q) where q > 0. Beyond the horizon
@@ -195,7 +194,9 @@ HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
       inv_q = hn::Div(one, q);
       beyond = hn::AndNot(hn::Or(flat_f, hn::Gt(q, zero)), hn::RebindMask(df, used));
       any_beyond = !hn::AllFalse(df, beyond);
+      any_beyond_lanes = hn::Or(any_beyond_lanes, beyond);
     }
+    const hn::Rebind<uint32_t, D> du;
     auto packed = hn::Zero(du);
     for (int c = 0; c < 4; ++c) {
       const auto qa_base = hn::Add(qa0[c], hn::Add(hn::Mul(qa_dx[c], fdx), hn::Mul(qa_dy[c], fdy)));
@@ -204,18 +205,95 @@ HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
       if (any_beyond) value = hn::IfThenElse(beyond, hn::Div(v, q), value);
       packed = hn::Or(packed, hn::ShiftLeftSame(to_unorm8(df, value), 8 * c));
     }
-    rgba8[i] = packed;
+    slot(i, place, z_base, z_clamped, packed);
   }
+  return any_beyond_lanes;
+}
+
+// The pixel records of the lanes from l0, whose covered pixels `first` holds as a
+// kFirstPixels entry (lanes with 1 to kPixelRecordPixels become records): RecordValues'
+// depth and colour, then PixelRecord's bytes in Out::pixel_words. Slots no lane fills are zero.
+template <class D, class VI>
+HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
+  using V = hn::Vec<D>;
+  const hn::Rebind<int32_t, D> di;
+  const hn::Rebind<uint32_t, D> du;
+  hn::Vec<decltype(du)> z_bits[kPixelRecordPixels], rgba8[kPixelRecordPixels];
+  for (uint32_t i = 0; i < kPixelRecordPixels; ++i) {
+    z_bits[i] = hn::Zero(du);
+    rgba8[i] = hn::Zero(du);
+  }
+  RecordValues<kPixelRecordPixels, 8>(d, l0, first, out,
+                                      [&](uint32_t i, auto, auto, auto z, auto packed) {
+                                        z_bits[i] = hn::BitCast(du, z);
+                                        rgba8[i] = packed;
+                                      });
+  const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
+  const V x0 = load(out.x0), y0 = load(out.y0);
   const auto i32 = [&](V v) { return hn::BitCast(du, hn::DemoteTo(di, v)); };
-  const auto origin = hn::Or(hn::BitCast(du, x0i), hn::ShiftLeft<16>(hn::BitCast(du, y0i)));
-  const auto shape =
-      hn::Or(hn::BitCast(du, count), hn::Or(hn::ShiftLeft<2>(i32(hn::Sub(load(out.x1), x0))),
-                                            hn::ShiftLeft<4>(i32(hn::Sub(load(out.y1), y0)))));
+  const auto origin = hn::Or(i32(x0), hn::ShiftLeft<16>(i32(y0)));
+  const auto count = hn::BitCast(du, hn::ShiftRight<24>(first));
+  const auto shape = hn::Or(count, hn::Or(hn::ShiftLeft<2>(i32(hn::Sub(load(out.x1), x0))),
+                                          hn::ShiftLeft<4>(i32(hn::Sub(load(out.y1), y0)))));
   const auto offsets = hn::BitCast(du, hn::And(first, hn::Set(di, 0xFFFFFF)));
   static_assert(kPixelRecordPixels == 3);
   hn::StoreInterleaved4(origin, hn::Or(shape, hn::ShiftLeft<8>(offsets)), z_bits[0], z_bits[1], du,
                         out.pixel_words[0] + 4 * l0);
   hn::StoreInterleaved4(z_bits[2], rgba8[0], rgba8[1], rgba8[2], du, out.pixel_words[1] + 4 * l0);
+}
+
+// The sample records of the lanes from l0 (two or four samples), whose pixels with a covered
+// sample `first` holds as a kFirstSamplePixels entry and whose covered samples `mask` holds
+// (TriangleSetup::sample_bits): SampleRecord's bytes in Out::sample_words. Returns the lanes
+// that cannot be sample records: a pixel's centre beyond the horizon, where the colour depends
+// on which sample passes first.
+template <class D, class VI, class VU>
+HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU mask, uint32_t samples, Out& out) {
+  using V = hn::Vec<D>;
+  const hn::Rebind<int32_t, D> di;
+  const hn::Rebind<uint32_t, D> du;
+  const hn::Rebind<float, D> df;
+  hn::Vec<decltype(du)> z_base_bits[kSampleRecordPixels], rgba8[kSampleRecordPixels];
+  for (uint32_t i = 0; i < kSampleRecordPixels; ++i) {
+    z_base_bits[i] = hn::Zero(du);
+    rgba8[i] = hn::Zero(du);
+  }
+  auto coverage = hn::Zero(du);
+  const auto pixel_samples = hn::Set(du, (1u << samples) - 1);
+  const auto beyond = RecordValues<kSampleRecordPixels, 4>(
+      d, l0, first, out, [&](uint32_t i, auto place, auto z_base, auto, auto packed) {
+        // The pixel's samples: bits from (y * 3 + x) * samples of the mask.
+        const auto pixel = hn::Add(hn::Mul(hn::ShiftRight<2>(place), hn::Set(di, 3)),
+                                   hn::And(place, hn::Set(di, 3)));
+        const auto shift =
+            hn::BitCast(du, hn::Mul(pixel, hn::Set(di, static_cast<int32_t>(samples))));
+        const auto cov = hn::And(mask >> shift, pixel_samples);
+        coverage = hn::Or(coverage, hn::ShiftLeftSame(cov, static_cast<int>(4 * i)));
+        z_base_bits[i] = hn::BitCast(du, z_base);
+        rgba8[i] = packed;
+      });
+  const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
+  const V x0 = load(out.x0), y0 = load(out.y0);
+  const auto i32 = [&](V v) { return hn::BitCast(du, hn::DemoteTo(di, v)); };
+  const auto origin = hn::Or(i32(x0), hn::ShiftLeft<16>(i32(y0)));
+  const auto count = hn::BitCast(du, hn::ShiftRight<24>(first));
+  const auto shape = hn::Or(count, hn::Or(hn::ShiftLeft<3>(i32(hn::Sub(load(out.x1), x0))),
+                                          hn::ShiftLeft<5>(i32(hn::Sub(load(out.y1), y0)))));
+  const auto offsets = hn::BitCast(du, hn::And(first, hn::Set(di, 0xFFFF)));
+  const auto z_dx = hn::BitCast(du, hn::DemoteTo(df, load(out.z_dx)));
+  const auto z_dy = hn::BitCast(du, hn::DemoteTo(df, load(out.z_dy)));
+  const auto zero = hn::Zero(du);
+  static_assert(kSampleRecordPixels == 4);
+  hn::StoreInterleaved4(origin, hn::Or(shape, hn::ShiftLeft<16>(offsets)), coverage, z_dx, du,
+                        out.sample_words[0] + 4 * l0);
+  hn::StoreInterleaved4(z_dy, z_base_bits[0], z_base_bits[1], z_base_bits[2], du,
+                        out.sample_words[1] + 4 * l0);
+  hn::StoreInterleaved4(z_base_bits[3], rgba8[0], rgba8[1], rgba8[2], du,
+                        out.sample_words[2] + 4 * l0);
+  hn::StoreInterleaved4(rgba8[3], zero, zero, zero, du, out.sample_words[3] + 4 * l0);
+  // As lanes of D.
+  const auto beyond_i = hn::VecFromMask(di, hn::RebindMask(di, beyond));
+  return hn::Lt(hn::PromoteTo(d, beyond_i), hn::Zero(d));
 }
 
 // One vector of lanes from l0, whose vertices' positions `pos` holds as x, y, z, w vectors.
@@ -398,9 +476,10 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   V sample_mask = zero;  // TriangleSetup::sample_bits
   // One sample (pixel records): the kFirstPixels entry of the covered pixels, and their count.
   const hn::Rebind<int32_t, decltype(d)> di;
+  const hn::Rebind<uint32_t, decltype(d)> du;
   auto first_pixels = hn::Zero(di);
-  V found = zero;
-  auto any_pixel = hn::Lt(zero, zero);  // the lanes that become pixel records
+  auto sample_mask_bits = hn::Zero(du);  // sample records: the mask's bits
+  auto any_pixel = hn::Lt(zero, zero);   // the lanes that become pixel or sample records
   if (sample_bits) {
     // Sample s of a box pixel is inside edge k when E(centre) + a dx_s + b dy_s >= 0, with
     // a = -dy, b = dx: E(centre) >= dy dx_s - dx dy_s (exact: products below 2^51). The box's
@@ -440,24 +519,39 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
         row[k] = hn::Add(row[k], hn::Mul(edge_dx[k], hn::Set(d, scale)));
     }
     any_sample = hn::And(any_sample, hn::Or(hn::Not(fits), hn::Gt(sample_mask, zero)));
+    // As a signed 32-bit value, for PackLanes' conversion: the same bits.
+    const V top = hn::Set(d, 2147483648.0);
+    sample_mask =
+        hn::Sub(sample_mask, hn::IfThenElseZero(hn::Ge(sample_mask, top), hn::Add(top, top)));
     if (samples == 1) {
       // Pixel records for the lanes with 1 to kPixelRecordPixels covered pixels (the mask
       // holds 9 bits: bit py * 3 + px).
       first_pixels = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(kFirstPixels.data()),
                                      hn::DemoteTo(di, sample_mask));
-      found = hn::PromoteTo(d, hn::ShiftRight<24>(first_pixels));
+      const V found = hn::PromoteTo(d, hn::ShiftRight<24>(first_pixels));
       any_pixel = hn::And(hn::Gt(found, zero),
                           hn::Le(found, hn::Set(d, static_cast<double>(kPixelRecordPixels))));
+    } else if (ctx.sample_records) {
+      // Sample records for the lanes with covered samples in 1 to kSampleRecordPixels pixels:
+      // the pixels with any (bit py * 3 + px) looked up as at one sample.
+      sample_mask_bits = hn::BitCast(du, hn::DemoteTo(di, sample_mask));
+      auto any = hn::Zero(du);
+      for (uint32_t pixel = 0; pixel < pixels; ++pixel) {
+        const auto pixel_mask = hn::Set(du, ((1u << samples) - 1) << (pixel * samples));
+        any = hn::Or(any,
+                     hn::IfThenElseZero(hn::Ne(hn::And(sample_mask_bits, pixel_mask), hn::Zero(du)),
+                                        hn::Set(du, 1u << pixel)));
+      }
+      first_pixels = hn::GatherIndex(
+          di, reinterpret_cast<const int32_t*>(kFirstSamplePixels.data()), hn::BitCast(di, any));
+      const V found = hn::PromoteTo(d, hn::ShiftRight<24>(first_pixels));
+      any_pixel = hn::And(hn::Gt(found, zero),
+                          hn::Le(found, hn::Set(d, static_cast<double>(kSampleRecordPixels))));
     }
-    // As a signed 32-bit value, for PackLanes' conversion: the same bits.
-    const V top = hn::Set(d, 2147483648.0);
-    sample_mask =
-        hn::Sub(sample_mask, hn::IfThenElseZero(hn::Ge(sample_mask, top), hn::Add(top, top)));
   }
   // At one sample the bits are the pixel records' centres, and the setups carry none.
   hn::Store(ctx.samples == 1 ? zero : sample_mask, d, out.sample_bits + l0);
   out.binned |= mask_bits(d, hn::And(keep, any_sample)) << l0;
-  out.pixel |= mask_bits(d, any_pixel) << l0;
 
   auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {
     hn::Store(
@@ -486,7 +580,15 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     plane(hn::Mul(q[0], C[0][c]), hn::Mul(q[1], C[1][c]), hn::Mul(q[2], C[2][c]), out.qa0[c],
           out.qa_dx[c], out.qa_dy[c]);
   }
-  if (!hn::AllFalse(d, any_pixel)) PixelValues(d, l0, first_pixels, out);
+  if (!hn::AllFalse(d, any_pixel)) {
+    if (ctx.samples == 1) {
+      PixelValues(d, l0, first_pixels, out);
+    } else {
+      any_pixel = hn::AndNot(SampleValues(d, l0, first_pixels, sample_mask_bits, ctx.samples, out),
+                             any_pixel);
+    }
+  }
+  out.pixel |= mask_bits(d, any_pixel) << l0;
   // Setup records only for lanes that are binned and not pixel records (the clipper makes its
   // own): often none, with tiny triangles.
   const auto full = hn::AndNot(any_pixel, hn::And(keep, any_sample));
@@ -548,7 +650,8 @@ HWY_INLINE void stream_piece(const void* from, void* to) {
 }
 
 bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, size_t end,
-                SetupList& setups, PixelList& pixels, binning::Bins& bins, Counters& counters) {
+                SetupList& setups, PixelList& pixels, SampleList& samples, binning::Bins& bins,
+                Counters& counters) {
   const hn::ScalableTag<double> d;
   const size_t lanes = std::min(hn::Lanes(d), kMaxLanes);
   const bool indexed = !input.indices.empty();
@@ -582,8 +685,9 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
     // not written, and the list is cut to it after the lanes.
     size_t next = setups.size();
     setups.resize(next + used);
-    size_t next_pixel = pixels.size();
+    size_t next_pixel = pixels.size(), next_sample = samples.size();
     if (ctx.pixel_records) pixels.resize(next_pixel + used);
+    if (ctx.sample_records) samples.resize(next_sample + used);
     // The lanes' outcomes counted at once; then only the lanes with records are visited, in
     // order (submission order in the bins). With half of a dense mesh's tiny triangles
     // covering no pixel centre, a branch per lane on it mispredicts often.
@@ -621,6 +725,13 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
           static_cast<uint32_t>(out.x0[l]), static_cast<uint32_t>(out.y0[l]),
           static_cast<uint32_t>(out.x1[l]), static_cast<uint32_t>(out.y1[l]), ctx.bin_tile_log2);
       if ((out.pixel >> l) & 1) {
+        if (ctx.sample_records) {
+          char* record = reinterpret_cast<char*>(&samples[next_sample]);
+          for (int k = 0; k < 4; ++k)
+            stream_piece(out.sample_words[k] + 4 * l, record + 16 * k);
+          bins.record(tiles, kPixelRecordBit | static_cast<uint32_t>(next_sample++));
+          continue;
+        }
         char* record = reinterpret_cast<char*>(&pixels[next_pixel]);
         for (int k = 0; k < 2; ++k)
           stream_piece(out.pixel_words[k] + 4 * l, record + 16 * k);
@@ -638,6 +749,7 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
     }
     setups.resize(next);
     pixels.resize(next_pixel);
+    samples.resize(next_sample);
   }
   hwy::FlushStream();
   return ok;

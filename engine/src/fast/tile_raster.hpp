@@ -12,10 +12,11 @@
 
 namespace tessera::fast {
 
-// One setup worker's output: its triangles (setups and pixel records) and its bins.
+// One setup worker's output: its triangles (setups, and pixel or sample records) and its bins.
 struct ChunkView {
   const TriangleSetup* setups = nullptr;
   const PixelRecord* pixels = nullptr;
+  const SampleRecord* samples = nullptr;
   const binning::Bins* bins = nullptr;
 };
 
@@ -35,9 +36,10 @@ struct BinGrid {
 
 // Rasterizes bin tile `tile`: for each storage tile it overlaps, every binned triangle in
 // submission order. `draw` holds the per-draw fields of TileContext; pixel records go to
-// `pixel_kernel`.
+// `pixel_kernel`, and with a non-null `sample_kernel` (a multisample draw) the records are
+// sample records and go there.
 void raster_tile(const TileContext& draw, TriangleKernel kernel, PixelKernel pixel_kernel,
-                 detail::FramebufferStorage& fb, const BinGrid& bins, uint32_t tile,
-                 std::span<const ChunkView> chunks, Counters& counters);
+                 SampleKernel sample_kernel, detail::FramebufferStorage& fb, const BinGrid& bins,
+                 uint32_t tile, std::span<const ChunkView> chunks, Counters& counters);
 
 }  // namespace tessera::fast

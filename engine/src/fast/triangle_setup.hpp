@@ -98,6 +98,10 @@ struct SetupContext {
   // setup turns triangles that cover at most three pixels of a box of at most 3x3 into pixel
   // records (pixel_record.hpp).
   bool pixel_records = false;
+  // Two or four samples per pixel and a colour target that is RGBA8 or not written: the
+  // vectorized setup turns triangles whose covered samples lie in at most four pixels of a box
+  // of at most 3x3 into sample records (pixel_record.hpp).
+  bool sample_records = false;
 
   // Whether small triangles' setups carry TriangleSetup::sample_bits.
   bool small_sample_bits() const { return samples == 2 || samples == 4; }
