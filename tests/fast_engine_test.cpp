@@ -461,16 +461,22 @@ TEST(FastEngine, TinyTriangleRecordsDrawTheSameBytesAsTheFullSetups) {
         const Result setups = render(s, Backend::kFast, config, kDefaultBinMemoryBudget, true, true,
                                      64, 8, false, /*records=*/false);
         ASSERT_GT(records.counters.samples_passed, 3000u * samples);
+        const Counters &on = records.counters, &off = setups.counters;
         if (samples == 1) {
           // Boxes of 3x3 pixels covering no centre are not binned with pixel records; the
           // kernels reject their blocks.
-          EXPECT_LE(records.counters.bin_references, setups.counters.bin_references);
-          EXPECT_LE(records.counters.blocks_rejected, setups.counters.blocks_rejected);
+          EXPECT_LE(on.bin_references, off.bin_references);
+          EXPECT_LE(on.blocks_rejected, off.blocks_rejected);
+          EXPECT_EQ(on.blocks_partial, off.blocks_partial);
         } else {
-          EXPECT_EQ(records.counters.bin_references, setups.counters.bin_references);
-          EXPECT_EQ(records.counters.blocks_rejected, setups.counters.blocks_rejected);
+          // The same blocks are visited. A record counts a block partial when it has a
+          // covered sample there; the kernels of 3x3 boxes at four samples, when no edge
+          // misses the whole block.
+          EXPECT_EQ(on.bin_references, off.bin_references);
+          EXPECT_EQ(on.blocks_partial + on.blocks_rejected,
+                    off.blocks_partial + off.blocks_rejected);
+          EXPECT_LE(on.blocks_partial, off.blocks_partial);
         }
-        EXPECT_EQ(records.counters.blocks_partial, setups.counters.blocks_partial);
         EXPECT_EQ(records.counters.samples_covered, setups.counters.samples_covered);
         EXPECT_EQ(records.counters.samples_passed, setups.counters.samples_passed);
         EXPECT_EQ(records.counters.pixels_shaded, setups.counters.pixels_shaded);

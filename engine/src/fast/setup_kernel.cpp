@@ -244,11 +244,13 @@ HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
 
 // The sample records of the lanes from l0 (two or four samples), whose pixels with a covered
 // sample `first` holds as a kFirstSamplePixels entry and whose covered samples `mask` holds
-// (TriangleSetup::sample_bits): SampleRecord's bytes in Out::sample_words. Returns the lanes
+// as TriangleSetup::sample_bits does, with a 3x3 box's last pixel's in `last` at four
+// samples: SampleRecord's bytes in Out::sample_words. Returns the lanes
 // that cannot be sample records: a pixel's centre beyond the horizon, where the colour depends
 // on which sample passes first.
 template <class D, class VI, class VU>
-HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU mask, uint32_t samples, Out& out) {
+HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU mask, VU last, uint32_t samples,
+                             Out& out) {
   using V = hn::Vec<D>;
   const hn::Rebind<int32_t, D> di;
   const hn::Rebind<uint32_t, D> du;
@@ -262,12 +264,14 @@ HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU mask, uint32_t samples
   const auto pixel_samples = hn::Set(du, (1u << samples) - 1);
   const auto beyond = RecordValues<kSampleRecordPixels, 4>(
       d, l0, first, out, [&](uint32_t i, auto place, auto z_base, auto, auto packed) {
-        // The pixel's samples: bits from (y * 3 + x) * samples of the mask.
+        // The pixel's samples: bits from (y * 3 + x) * samples of the mask, or `last` for a
+        // pixel past its 32 bits.
         const auto pixel = hn::Add(hn::Mul(hn::ShiftRight<2>(place), hn::Set(di, 3)),
                                    hn::And(place, hn::Set(di, 3)));
-        const auto shift =
-            hn::BitCast(du, hn::Mul(pixel, hn::Set(di, static_cast<int32_t>(samples))));
-        const auto cov = hn::And(mask >> shift, pixel_samples);
+        const auto bit = hn::Mul(pixel, hn::Set(di, static_cast<int32_t>(samples)));
+        const auto past = hn::RebindMask(du, hn::Gt(bit, hn::Set(di, 31)));
+        const auto shift = hn::IfThenZeroElse(past, hn::BitCast(du, bit));
+        const auto cov = hn::IfThenElse(past, last, hn::And(mask >> shift, pixel_samples));
         coverage = hn::Or(coverage, hn::ShiftLeftSame(cov, static_cast<int>(4 * i)));
         z_base_bits[i] = hn::BitCast(du, z_base);
         rgba8[i] = packed;
@@ -479,18 +483,22 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   const hn::Rebind<uint32_t, decltype(d)> du;
   auto first_pixels = hn::Zero(di);
   auto sample_mask_bits = hn::Zero(du);  // sample records: the mask's bits
+  auto last_pixel_bits = hn::Zero(du);   // and the last pixel's, where they pass 32 bits
   auto any_pixel = hn::Lt(zero, zero);   // the lanes that become pixel or sample records
   if (sample_bits) {
     // Sample s of a box pixel is inside edge k when E(centre) + a dx_s + b dy_s >= 0, with
-    // a = -dy, b = dx: E(centre) >= dy dx_s - dx dy_s (exact: products below 2^51). The box's
+    // a = -dy, b = dx: E(centre) >= dy dx_s - dx dy_s (exact: products below 2^51). The setup's
     // pixels are those whose bits fit 32: every 3x3 one at one and two samples, all but the last
-    // at four.
+    // at four. Sample records take every 3x3 box: at four samples the last pixel's samples are
+    // kept apart (last_mask).
     const uint32_t samples = ctx.samples;
-    const uint32_t pixels = std::min(9u, 32u / samples);
+    const uint32_t setup_pixels = std::min(9u, 32u / samples);
+    const bool nine = ctx.sample_records && setup_pixels < 9;
     const V last_x = hn::Sub(bx1, bx0), last_y = hn::Sub(by1, by0);  // in the box, from 0
     const V two = hn::Set(d, 2.0);
-    auto fits = hn::And(hn::Le(last_x, two), hn::Le(last_y, two));
-    if (pixels < 9) fits = hn::AndNot(hn::And(hn::Eq(last_x, two), hn::Eq(last_y, two)), fits);
+    const auto box = hn::And(hn::Le(last_x, two), hn::Le(last_y, two));
+    auto fits = box;  // TriangleSetup::sample_bits holds the box's samples
+    if (setup_pixels < 9) fits = hn::AndNot(hn::And(hn::Eq(last_x, two), hn::Eq(last_y, two)), box);
     V least[3][4];
     for (uint32_t s = 0; s < samples; ++s) {
       const V sx = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dx[s]} << shift));
@@ -498,19 +506,34 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
       for (int k = 0; k < 3; ++k)
         least[k][s] = hn::Sub(hn::Mul(edge_dy[k], sx), hn::Mul(edge_dx[k], sy));
     }
+    V last_mask = zero;  // nine: the last pixel's samples, bit s
+    V any_mask = zero;   // sample records: the pixels with a covered sample, bit py * 3 + px
     V row[3] = {edge_at[0], edge_at[1], edge_at[2]};
     for (uint32_t py = 0, pixel = 0; py < 3; ++py) {
-      const auto row_in_box = hn::And(fits, hn::Le(hn::Set(d, static_cast<double>(py)), last_y));
+      const auto row_in_box =
+          hn::And(nine ? box : fits, hn::Le(hn::Set(d, static_cast<double>(py)), last_y));
       V e[3] = {row[0], row[1], row[2]};
-      for (uint32_t px = 0; px < 3 && pixel < pixels; ++px, ++pixel) {
+      for (uint32_t px = 0; px < 3 && pixel < (nine ? 9 : setup_pixels); ++px, ++pixel) {
         const auto in_box =
             hn::And(row_in_box, hn::Le(hn::Set(d, static_cast<double>(px)), last_x));
+        V pixel_mask = zero;  // bit s: sample s covered
         for (uint32_t s = 0; s < samples; ++s) {
           const auto covered =
               hn::And(hn::And(in_box, hn::Ge(e[0], least[0][s])),
                       hn::And(hn::Ge(e[1], least[1][s]), hn::Ge(e[2], least[2][s])));
-          const double bit = static_cast<double>(1u << (pixel * samples + s));
-          sample_mask = hn::Add(sample_mask, hn::IfThenElseZero(covered, hn::Set(d, bit)));
+          pixel_mask = hn::Add(
+              pixel_mask, hn::IfThenElseZero(covered, hn::Set(d, static_cast<double>(1u << s))));
+        }
+        if (pixel < setup_pixels) {
+          const double place = static_cast<double>(1u << (pixel * samples));
+          sample_mask = hn::Add(sample_mask, hn::Mul(pixel_mask, hn::Set(d, place)));
+        } else {
+          last_mask = pixel_mask;
+        }
+        if (ctx.sample_records) {
+          any_mask =
+              hn::Add(any_mask, hn::IfThenElseZero(hn::Gt(pixel_mask, zero),
+                                                   hn::Set(d, static_cast<double>(1u << pixel))));
         }
         for (int k = 0; k < 3; ++k)
           e[k] = hn::Sub(e[k], hn::Mul(edge_dy[k], hn::Set(d, scale)));
@@ -518,11 +541,10 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
       for (int k = 0; k < 3; ++k)
         row[k] = hn::Add(row[k], hn::Mul(edge_dx[k], hn::Set(d, scale)));
     }
-    any_sample = hn::And(any_sample, hn::Or(hn::Not(fits), hn::Gt(sample_mask, zero)));
-    // As a signed 32-bit value, for PackLanes' conversion: the same bits.
-    const V top = hn::Set(d, 2147483648.0);
-    sample_mask =
-        hn::Sub(sample_mask, hn::IfThenElseZero(hn::Ge(sample_mask, top), hn::Add(top, top)));
+    // Full 3x3 boxes at four samples are binned as without records: with a setup whose
+    // sample_bits are 0, unless they become sample records.
+    const V fit_mask = nine ? hn::IfThenElseZero(fits, sample_mask) : sample_mask;
+    any_sample = hn::And(any_sample, hn::Or(hn::Not(fits), hn::Gt(fit_mask, zero)));
     if (samples == 1) {
       // Pixel records for the lanes with 1 to kPixelRecordPixels covered pixels (the mask
       // holds 9 bits: bit py * 3 + px).
@@ -531,23 +553,25 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
       const V found = hn::PromoteTo(d, hn::ShiftRight<24>(first_pixels));
       any_pixel = hn::And(hn::Gt(found, zero),
                           hn::Le(found, hn::Set(d, static_cast<double>(kPixelRecordPixels))));
-    } else if (ctx.sample_records) {
-      // Sample records for the lanes with covered samples in 1 to kSampleRecordPixels pixels:
-      // the pixels with any (bit py * 3 + px) looked up as at one sample.
-      sample_mask_bits = hn::BitCast(du, hn::DemoteTo(di, sample_mask));
-      auto any = hn::Zero(du);
-      for (uint32_t pixel = 0; pixel < pixels; ++pixel) {
-        const auto pixel_mask = hn::Set(du, ((1u << samples) - 1) << (pixel * samples));
-        any = hn::Or(any,
-                     hn::IfThenElseZero(hn::Ne(hn::And(sample_mask_bits, pixel_mask), hn::Zero(du)),
-                                        hn::Set(du, 1u << pixel)));
-      }
-      first_pixels = hn::GatherIndex(
-          di, reinterpret_cast<const int32_t*>(kFirstSamplePixels.data()), hn::BitCast(di, any));
+    }
+    // As signed 32-bit values, for the conversions below and PackLanes': the same bits.
+    const V top = hn::Set(d, 2147483648.0);
+    const auto as_signed = [&](V v) {
+      return hn::Sub(v, hn::IfThenElseZero(hn::Ge(v, top), hn::Add(top, top)));
+    };
+    if (ctx.sample_records) {
+      // Sample records for the lanes with covered samples in 1 to kSampleRecordPixels pixels,
+      // looked up as at one sample.
+      sample_mask_bits = hn::BitCast(du, hn::DemoteTo(di, as_signed(sample_mask)));
+      last_pixel_bits = hn::BitCast(du, hn::DemoteTo(di, last_mask));
+      first_pixels =
+          hn::GatherIndex(di, reinterpret_cast<const int32_t*>(kFirstSamplePixels.data()),
+                          hn::DemoteTo(di, any_mask));
       const V found = hn::PromoteTo(d, hn::ShiftRight<24>(first_pixels));
       any_pixel = hn::And(hn::Gt(found, zero),
                           hn::Le(found, hn::Set(d, static_cast<double>(kSampleRecordPixels))));
     }
+    sample_mask = as_signed(fit_mask);
   }
   // At one sample the bits are the pixel records' centres, and the setups carry none.
   hn::Store(ctx.samples == 1 ? zero : sample_mask, d, out.sample_bits + l0);
@@ -584,8 +608,9 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     if (ctx.samples == 1) {
       PixelValues(d, l0, first_pixels, out);
     } else {
-      any_pixel = hn::AndNot(SampleValues(d, l0, first_pixels, sample_mask_bits, ctx.samples, out),
-                             any_pixel);
+      any_pixel = hn::AndNot(
+          SampleValues(d, l0, first_pixels, sample_mask_bits, last_pixel_bits, ctx.samples, out),
+          any_pixel);
     }
   }
   out.pixel |= mask_bits(d, any_pixel) << l0;
