@@ -68,17 +68,8 @@ class Bins {
   }
   // Lays the recorded triangles' references out, tile by tile, in recording order.
   void place() {
-    // Most triangles of a dense scene touch one tile: they skip the loops.
-    for (const TileRect& r : rects_) {
-      if (r.x0 == r.x1 && r.y0 == r.y1) {
-        ++counts_[r.y0 * tiles_x_ + r.x0];
-        continue;
-      }
-      for (uint32_t ty = r.y0; ty <= r.y1; ++ty) {
-        for (uint32_t tx = r.x0; tx <= r.x1; ++tx)
-          ++counts_[ty * tiles_x_ + tx];
-      }
-    }
+    for (const TileRect& r : rects_)
+      for_each_tile(r, [&](uint32_t t) { ++counts_[t]; });
     uint32_t start = 0;
     for (size_t t = 0; t < counts_.size(); ++t) {
       starts_[t] = start;
@@ -90,15 +81,8 @@ class Bins {
     for (size_t t = 0; t < next.size(); ++t)
       next[t] = starts_[t];
     for (uint32_t i = 0; i < rects_.size(); ++i) {
-      const TileRect r = rects_[i];
-      if (r.x0 == r.x1 && r.y0 == r.y1) {
-        lists_[next[r.y0 * tiles_x_ + r.x0]++] = refs_[i];
-        continue;
-      }
-      for (uint32_t ty = r.y0; ty <= r.y1; ++ty) {
-        for (uint32_t tx = r.x0; tx <= r.x1; ++tx)
-          lists_[next[ty * tiles_x_ + tx]++] = refs_[i];
-      }
+      const uint32_t reference = refs_[i];
+      for_each_tile(rects_[i], [&](uint32_t t) { lists_[next[t]++] = reference; });
     }
   }
   // Tile t's triangles' references, in submission order (after place()).
@@ -115,6 +99,20 @@ class Bins {
   }
 
  private:
+  // Calls visit(t) for each tile t of `r`, row by row. Most triangles of a dense scene touch
+  // one tile: they skip the loops.
+  template <class Visit>
+  void for_each_tile(TileRect r, const Visit& visit) const {
+    if (r.x0 == r.x1 && r.y0 == r.y1) {
+      visit(r.y0 * tiles_x_ + r.x0);
+      return;
+    }
+    for (uint32_t ty = r.y0; ty <= r.y1; ++ty) {
+      for (uint32_t tx = r.x0; tx <= r.x1; ++tx)
+        visit(ty * tiles_x_ + tx);
+    }
+  }
+
   uint32_t tiles_x_ = 0;
   std::vector<uint32_t> counts_;
   std::vector<uint32_t> starts_;
