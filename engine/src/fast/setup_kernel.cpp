@@ -127,6 +127,22 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
   put(7, f32(out.qa_dy[2]), f32(out.qa_dy[3]), i32(out.sample_bits), zero);
 }
 
+// The first word of a record for the lanes from l0 (`origin`: the box's first pixel, x0 | y0 << 16)
+// and its shape byte: the count of pixels `first` holds (a first_pixels_table entry), then
+// the box's width and height less one, two bits each from bit kCountBits.
+template <int kCountBits, class D, class VI, class VU>
+HWY_INLINE VU RecordShape(D d, size_t l0, VI first, const Out& out, VU& origin) {
+  const hn::Rebind<int32_t, D> di;
+  const hn::Rebind<uint32_t, D> du;
+  const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
+  const auto i32 = [&](hn::Vec<D> v) { return hn::BitCast(du, hn::DemoteTo(di, v)); };
+  const auto x0 = load(out.x0), y0 = load(out.y0);
+  origin = hn::Or(i32(x0), hn::ShiftLeft<16>(i32(y0)));
+  const auto count = hn::BitCast(du, hn::ShiftRight<24>(first));
+  return hn::Or(count, hn::Or(hn::ShiftLeft<kCountBits>(i32(hn::Sub(load(out.x1), x0))),
+                              hn::ShiftLeft<kCountBits + 2>(i32(hn::Sub(load(out.y1), y0)))));
+}
+
 // The values of the record pixels of the lanes from l0, whose pixels `first` holds as a
 // first_pixels_table entry (pixel_record.hpp: the places of the first kSlots ones, kBits bits
 // each, and their count): each pixel's depth and colour from the planes Out holds, as the
@@ -215,7 +231,6 @@ HWY_INLINE auto RecordValues(D d, size_t l0, VI first, const Out& out, const Slo
 // depth and colour, then PixelRecord's bytes in Out::pixel_words. Slots no lane fills are zero.
 template <class D, class VI>
 HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
-  using V = hn::Vec<D>;
   const hn::Rebind<int32_t, D> di;
   const hn::Rebind<uint32_t, D> du;
   hn::Vec<decltype(du)> z_bits[kPixelRecordPixels], rgba8[kPixelRecordPixels];
@@ -228,13 +243,8 @@ HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
                                         z_bits[i] = hn::BitCast(du, z);
                                         rgba8[i] = packed;
                                       });
-  const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
-  const V x0 = load(out.x0), y0 = load(out.y0);
-  const auto i32 = [&](V v) { return hn::BitCast(du, hn::DemoteTo(di, v)); };
-  const auto origin = hn::Or(i32(x0), hn::ShiftLeft<16>(i32(y0)));
-  const auto count = hn::BitCast(du, hn::ShiftRight<24>(first));
-  const auto shape = hn::Or(count, hn::Or(hn::ShiftLeft<2>(i32(hn::Sub(load(out.x1), x0))),
-                                          hn::ShiftLeft<4>(i32(hn::Sub(load(out.y1), y0)))));
+  auto origin = hn::Zero(du);
+  const auto shape = RecordShape<2>(d, l0, first, out, origin);
   const auto offsets = hn::BitCast(du, hn::And(first, hn::Set(di, 0xFFFFFF)));
   static_assert(kPixelRecordPixels == 3);
   hn::StoreInterleaved4(origin, hn::Or(shape, hn::ShiftLeft<8>(offsets)), z_bits[0], z_bits[1], du,
@@ -251,7 +261,6 @@ HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
 template <class D, class VI, class VU>
 HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU mask, VU last, uint32_t samples,
                              Out& out) {
-  using V = hn::Vec<D>;
   const hn::Rebind<int32_t, D> di;
   const hn::Rebind<uint32_t, D> du;
   const hn::Rebind<float, D> df;
@@ -276,14 +285,10 @@ HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU mask, VU last, uint32_
         z_base_bits[i] = hn::BitCast(du, z_base);
         rgba8[i] = packed;
       });
-  const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
-  const V x0 = load(out.x0), y0 = load(out.y0);
-  const auto i32 = [&](V v) { return hn::BitCast(du, hn::DemoteTo(di, v)); };
-  const auto origin = hn::Or(i32(x0), hn::ShiftLeft<16>(i32(y0)));
-  const auto count = hn::BitCast(du, hn::ShiftRight<24>(first));
-  const auto shape = hn::Or(count, hn::Or(hn::ShiftLeft<3>(i32(hn::Sub(load(out.x1), x0))),
-                                          hn::ShiftLeft<5>(i32(hn::Sub(load(out.y1), y0)))));
+  auto origin = hn::Zero(du);
+  const auto shape = RecordShape<3>(d, l0, first, out, origin);
   const auto offsets = hn::BitCast(du, hn::And(first, hn::Set(di, 0xFFFF)));
+  const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
   const auto z_dx = hn::BitCast(du, hn::DemoteTo(df, load(out.z_dx)));
   const auto z_dy = hn::BitCast(du, hn::DemoteTo(df, load(out.z_dy)));
   const auto zero = hn::Zero(du);
