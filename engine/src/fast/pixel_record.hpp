@@ -67,11 +67,11 @@ inline constexpr uint32_t kPixelRecordBit = 0x80000000u;
 using PixelList = detail::UninitializedVector<PixelRecord>;
 
 // Sample records, the multisample counterpart: at two or four samples per pixel, a triangle
-// whose box is at most 3x3 pixels (all but the full 3x3 at four samples) and which has covered
-// samples in at most kSampleRecordPixels pixels, none beyond its horizon at the pixel centre,
-// is stored as its pixels' sample masks, depth planes and colours in one 64-byte line instead
-// of a 160-byte TriangleSetup. The raster phase tests each covered sample's depth, formed as
-// the kernels form it from the same float values, and writes the colour shaded once per pixel.
+// whose box is at most 3x3 pixels and which has covered samples in at most kSampleRecordPixels
+// pixels, none beyond its horizon at the pixel centre, is stored as its pixels' sample masks,
+// depth planes and colours in one 64-byte line instead of a 160-byte TriangleSetup. The raster
+// phase tests each covered sample's depth, formed as the kernels form it from the same float
+// values, and writes the colour shaded once per pixel.
 struct SampleRecord {
   uint16_t x0, y0;  // the bounding box's first pixel
   // Bits 0-2: the pixels with a covered sample (1 to 4); bits 3-4 and 5-6: the box's width
