@@ -287,6 +287,54 @@ TEST(FastEngine, MultisampleTrianglesBetweenSamplesAreNotBinned) {
   });
 }
 
+TEST(FastEngine, LargeTrianglesCutToAFewPixelsMatchReference) {
+  // The setup tests the samples of boxes of at most 3x3 pixels itself (sample_bits, pixel and
+  // sample records) in 32-bit lanes, which are exact only for small triangles (edges under 32
+  // px). On screens of 1x1 to 3x3 pixels every box is that small, whatever the triangle: here
+  // triangles with edges from about 3 to 3,000 px (most under 32), centred on the screen or a
+  // little beyond, drawn at every sample count the setup tests (1, 2, 4) and at 8 and 16.
+  const uint32_t sizes[][2] = {{1, 1}, {2, 2}, {3, 3}, {3, 2}, {2, 3}};
+  std::mt19937 rng(717);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (const auto& size : sizes) {
+    Scene s;
+    s.width = size[0];
+    s.height = size[1];
+    for (int i = 0; i < 600; ++i) {
+      const float side = 3.0f + 3000.0f * u(rng) * u(rng) * u(rng);
+      const float cx = (u(rng) * 3.0f - 1.0f) * static_cast<float>(s.width);
+      const float cy = (u(rng) * 3.0f - 1.0f) * static_cast<float>(s.height);
+      const float rot = u(rng) * 2.0f * std::numbers::pi_v<float>;
+      float x[3], y[3], z[3], w[3] = {1, 1, 1}, c[3][4];
+      for (int k = 0; k < 3; ++k) {
+        const float a = rot + static_cast<float>(k) * 2.0f * std::numbers::pi_v<float> / 3.0f +
+                        (u(rng) - 0.5f) * 1.5f;
+        x[k] = cx + side / std::sqrt(3.0f) * std::cos(a);
+        y[k] = cy + side / std::sqrt(3.0f) * std::sin(a);
+        z[k] = static_cast<float>(i + 1) / 32768.0f;
+        for (int ch = 0; ch < 4; ++ch)
+          c[k][ch] = u(rng);
+      }
+      s.add(x, y, z, w, c);
+    }
+    s.pipeline.depth_compare = CompareOp::kAlways;
+    for (uint32_t samples : {1u, 2u, 4u, 8u, 16u}) {
+      SCOPED_TRACE(std::to_string(s.width) + "x" + std::to_string(s.height) + ", " +
+                   std::to_string(samples) + " samples");
+      s.samples = samples;
+      const Result ref = render(s, Backend::kReference);
+      EXPECT_GT(ref.counters.samples_covered, 0u);
+      for_each_config([&](const Config& config) {
+        const Result fast = render(s, Backend::kFast, config);
+        expect_same_coverage(fast, ref, "");
+        EXPECT_EQ(fast.rgba8, render(s, Backend::kFast, config, kDefaultBinMemoryBudget, true, true,
+                                     64, 8, false, false)
+                                  .rgba8);
+      });
+    }
+  }
+}
+
 TEST(FastEngine, TinyTrianglesMatchReferenceInEveryDrawState) {
   // Triangles of about 1.5 pixels, at one, two and four samples: most have a box of at most
   // 2x2 pixels, whose covered pixel centres (one sample: TriangleSetup::centres) or samples

@@ -492,60 +492,120 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   auto any_pixel = hn::Lt(zero, zero);   // the lanes that become pixel or sample records
   if (sample_bits) {
     // Sample s of a box pixel is inside edge k when E(centre) + a dx_s + b dy_s >= 0, with
-    // a = -dy, b = dx: E(centre) >= dy dx_s - dx dy_s (exact: products below 2^51). The setup's
-    // pixels are those whose bits fit 32: every 3x3 one at one and two samples, all but the last
-    // at four. Sample records take every 3x3 box: at four samples the last pixel's samples are
+    // a = -dy, b = dx: when E(centre) - (dy dx_s - dx dy_s) is not negative. The setup's pixels
+    // are those whose bits fit 32: every 3x3 one at one and two samples, all but the last at
+    // four. Sample records take every 3x3 box: at four samples the last pixel's samples are
     // kept apart (last_mask).
+    //
+    // Only small triangles (every edge under 32 px: TriangleSetup::small) are tested, in 32-bit
+    // lanes, two samples of a triangle side by side in its 64-bit lane. Their edges' |dx|, |dy|
+    // are below 2^(bits + 5) and every pixel centre of the loop lies within 3 px of their
+    // vertices' bounding box (under 32 px), so |E| < 2 * 2^(bits + 5) * 35 * 2^bits < 2^28 and
+    // |dy dx_s - dx dy_s| < 2 * 2^(bits + 5) * 2^(bits - 1) <= 2^21: the difference is exact
+    // in int32, and its sign bit says whether the sample is outside. Other boxes of at most 3x3
+    // pixels (large triangles cut to a corner of the screen) keep sample_bits 0 and no record:
+    // the kernel tests their edges.
     const uint32_t samples = ctx.samples;
     const uint32_t setup_pixels = std::min(9u, 32u / samples);
     const bool nine = ctx.sample_records && setup_pixels < 9;
     const V last_x = hn::Sub(bx1, bx0), last_y = hn::Sub(by1, by0);  // in the box, from 0
     const V two = hn::Set(d, 2.0);
-    const auto box = hn::And(hn::Le(last_x, two), hn::Le(last_y, two));
+    const auto box = hn::And(hn::And(hn::Le(last_x, two), hn::Le(last_y, two)),
+                             hn::Lt(max_delta, hn::Set(d, 32.0 * scale)));
     auto fits = box;  // TriangleSetup::sample_bits holds the box's samples
     if (setup_pixels < 9) fits = hn::AndNot(hn::And(hn::Eq(last_x, two), hn::Eq(last_y, two)), box);
-    V least[3][4];
-    for (uint32_t s = 0; s < samples; ++s) {
-      const V sx = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dx[s]} << shift));
-      const V sy = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dy[s]} << shift));
-      for (int k = 0; k < 3; ++k)
-        least[k][s] = hn::Sub(hn::Mul(edge_dy[k], sx), hn::Mul(edge_dx[k], sy));
+    // Lanes of two samples each: 32-bit lanes, the low 32 bits of lo's and hi's box lanes side
+    // by side (0 in the other lanes). Targets with one lane per vector (HWY_SCALAR) test one
+    // sample per 64-bit lane.
+    constexpr uint32_t kPerLane = HWY_TARGET == HWY_SCALAR ? 1 : 2;
+    const hn::RebindToSigned<decltype(d)> d64;
+    const std::conditional_t<kPerLane == 2, hn::Repartition<int32_t, decltype(d)>, decltype(d64)>
+        ds;
+    const hn::RebindToUnsigned<decltype(ds)> dus;
+    using VS = hn::Vec<decltype(ds)>;
+    const auto as_int = [&](V v) { return hn::ConvertTo(d64, hn::IfThenElseZero(box, v)); };
+    const auto pair = [&](auto lo, auto hi) {
+      if constexpr (kPerLane == 1) {
+        (void)hi;
+        return lo;
+      } else {
+        return hn::BitCast(ds,
+                           hn::Or(hn::And(lo, hn::Set(d64, 0xFFFFFFFF)), hn::ShiftLeft<32>(hi)));
+      }
+    };
+    // The sign bits of a lane's samples as bits 0 (and 1) of its 64-bit lane.
+    const auto sign_bits = [&](VS v) {
+      constexpr int kTop = static_cast<int>(sizeof(hn::TFromD<decltype(ds)>) * 8 - 1);
+      const auto sign = hn::BitCast(d64, hn::ShiftRight<kTop>(hn::BitCast(dus, v)));
+      if constexpr (kPerLane == 1) {
+        return sign;
+      } else {
+        return hn::Or(hn::And(sign, hn::Set(d64, 1)), hn::ShiftRight<31>(sign));
+      }
+    };
+    // Group j: samples kPerLane * j and the next (sample 0 twice at one sample).
+    const uint32_t groups = (samples + kPerLane - 1) / kPerLane;
+    HWY_DASSERT(groups <= 4 / kPerLane);
+    VS least[3][4 / kPerLane], row[3], step_x[3], step_y[3];
+    for (int k = 0; k < 3; ++k) {
+      for (uint32_t j = 0; j < groups; ++j) {
+        const auto offset = [&](uint32_t s) {
+          const V sx = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dx[s]} << shift));
+          const V sy = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dy[s]} << shift));
+          return hn::Sub(hn::Mul(edge_dy[k], sx), hn::Mul(edge_dx[k], sy));
+        };
+        const auto first = as_int(offset(kPerLane * j));
+        least[k][j] =
+            pair(first, kPerLane * j + 1 < samples ? as_int(offset(kPerLane * j + 1)) : first);
+      }
+      const auto at = as_int(edge_at[k]);
+      const auto sx = as_int(hn::Mul(edge_dy[k], hn::Set(d, scale)));
+      const auto sy = as_int(hn::Mul(edge_dx[k], hn::Set(d, scale)));
+      row[k] = pair(at, at);
+      step_x[k] = pair(sx, sx);
+      step_y[k] = pair(sy, sy);
     }
-    V last_mask = zero;  // nine: the last pixel's samples, bit s
-    V any_mask = zero;   // sample records: the pixels with a covered sample, bit py * 3 + px
-    V row[3] = {edge_at[0], edge_at[1], edge_at[2]};
+    const auto pixel_samples = hn::Set(d64, (int64_t{1} << samples) - 1);
+    auto mask_bits64 = hn::Zero(d64);  // sample_mask's bits
+    auto last_bits64 = hn::Zero(d64);  // nine: the last pixel's samples, bit s
+    auto any_bits64 = hn::Zero(d64);   // sample records: the pixels with a covered sample
     for (uint32_t py = 0, pixel = 0; py < 3; ++py) {
       const auto row_in_box =
           hn::And(nine ? box : fits, hn::Le(hn::Set(d, static_cast<double>(py)), last_y));
-      V e[3] = {row[0], row[1], row[2]};
+      VS e[3] = {row[0], row[1], row[2]};
       for (uint32_t px = 0; px < 3 && pixel < (nine ? 9 : setup_pixels); ++px, ++pixel) {
         const auto in_box =
             hn::And(row_in_box, hn::Le(hn::Set(d, static_cast<double>(px)), last_x));
-        V pixel_mask = zero;  // bit s: sample s covered
-        for (uint32_t s = 0; s < samples; ++s) {
-          const auto covered =
-              hn::And(hn::And(in_box, hn::Ge(e[0], least[0][s])),
-                      hn::And(hn::Ge(e[1], least[1][s]), hn::Ge(e[2], least[2][s])));
-          pixel_mask = hn::Add(
-              pixel_mask, hn::IfThenElseZero(covered, hn::Set(d, static_cast<double>(1u << s))));
+        auto missed = hn::Zero(d64);  // bit s: sample s outside an edge
+        for (uint32_t j = 0; j < groups; ++j) {
+          // Negative where the sample is outside an edge.
+          const auto outside =
+              hn::Or(hn::Or(hn::Sub(e[0], least[0][j]), hn::Sub(e[1], least[1][j])),
+                     hn::Sub(e[2], least[2][j]));
+          missed =
+              hn::Or(missed, hn::ShiftLeftSame(sign_bits(outside), static_cast<int>(kPerLane * j)));
         }
+        const auto pixel_mask =
+            hn::IfThenElseZero(hn::RebindMask(d64, in_box), hn::AndNot(missed, pixel_samples));
         if (pixel < setup_pixels) {
-          const double place = static_cast<double>(1u << (pixel * samples));
-          sample_mask = hn::Add(sample_mask, hn::Mul(pixel_mask, hn::Set(d, place)));
+          mask_bits64 =
+              hn::Or(mask_bits64, hn::ShiftLeftSame(pixel_mask, static_cast<int>(pixel * samples)));
         } else {
-          last_mask = pixel_mask;
+          last_bits64 = pixel_mask;
         }
         if (ctx.sample_records) {
-          any_mask =
-              hn::Add(any_mask, hn::IfThenElseZero(hn::Gt(pixel_mask, zero),
-                                                   hn::Set(d, static_cast<double>(1u << pixel))));
+          any_bits64 = hn::Or(any_bits64, hn::IfThenElseZero(hn::Ne(pixel_mask, hn::Zero(d64)),
+                                                             hn::Set(d64, int64_t{1} << pixel)));
         }
         for (int k = 0; k < 3; ++k)
-          e[k] = hn::Sub(e[k], hn::Mul(edge_dy[k], hn::Set(d, scale)));
+          e[k] = hn::Sub(e[k], step_x[k]);
       }
       for (int k = 0; k < 3; ++k)
-        row[k] = hn::Add(row[k], hn::Mul(edge_dx[k], hn::Set(d, scale)));
+        row[k] = hn::Add(row[k], step_y[k]);
     }
+    sample_mask = hn::ConvertTo(d, mask_bits64);  // below 2^32: exact
+    const V last_mask = hn::ConvertTo(d, last_bits64);
+    const V any_mask = hn::ConvertTo(d, any_bits64);
     // Full 3x3 boxes at four samples are binned as without records: with a setup whose
     // sample_bits are 0, unless they become sample records.
     const V fit_mask = nine ? hn::IfThenElseZero(fits, sample_mask) : sample_mask;

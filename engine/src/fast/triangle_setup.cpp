@@ -131,10 +131,11 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   }
   t.sample_bits = 0;
   t.unused = 0;
-  if (ctx.small_sample_bits() && t.x1 - t.x0 <= 2 && t.y1 - t.y0 <= 2 &&
+  if (ctx.small_sample_bits() && max_delta < (int64_t{32} << bits) && t.x1 - t.x0 <= 2 &&
+      t.y1 - t.y0 <= 2 &&
       static_cast<uint32_t>((t.y1 - t.y0) * 3 + (t.x1 - t.x0) + 1) * ctx.samples <= 32) {
-    // Two or four samples and at most 3x3 pixels whose samples fit 32 bits: drawn only if a
-    // sample is inside, and the kernel is told which.
+    // Two or four samples, a small triangle and at most 3x3 pixels whose samples fit 32 bits
+    // (as the vectorized setup): drawn only if a sample is inside, and the kernel is told which.
     for (int32_t py = t.y0; py <= t.y1; ++py) {
       for (int32_t px = t.x0; px <= t.x1; ++px) {
         const uint32_t pixel = static_cast<uint32_t>((py - t.y0) * 3 + (px - t.x0));

@@ -52,8 +52,9 @@ struct TriangleSetup {
   float q_dx, q_dy;
   std::array<float, 4> qa0;
   std::array<float, 4> qa_dx, qa_dy;
-  // Two or four samples per pixel and a bounding box of at most 3x3 pixels whose samples fit
-  // 32 bits (any at two samples; at four, all but 3x3): which samples are inside, bit
+  // Two or four samples per pixel, a small triangle and a bounding box of at most 3x3 pixels
+  // whose samples fit 32 bits (any at two samples; at four, all but 3x3): which samples are
+  // inside, bit
   // ((y - y0) * 3 + (x - x0)) * samples + s, from exact edge functions. 0 when not known (any
   // other triangle): the kernel then tests the edges itself.
   uint32_t sample_bits;
