@@ -8,8 +8,10 @@ namespace {
 
 TEST(Framebuffer, StartsClearedToBlackAndFarDepth) {
   Framebuffer fb({3, 2, 4, ColorFormat::kRGBA8});
-  for (uint8_t v : fb.read_rgba8()) EXPECT_EQ(v, 0);
-  for (float d : fb.read_sample_depth()) EXPECT_EQ(d, 1.0f);
+  for (uint8_t v : fb.read_rgba8())
+    EXPECT_EQ(v, 0);
+  for (float d : fb.read_sample_depth())
+    EXPECT_EQ(d, 1.0f);
   EXPECT_EQ(fb.read_rgba8().size(), 3u * 2u * 4u);
   EXPECT_EQ(fb.read_sample_depth().size(), 3u * 2u * 4u);
 }
