@@ -1,0 +1,196 @@
+// The vectorized setup's instances, one per compiled Highway target, against each other: every
+// instance this machine runs, the one-lane HWY_SCALAR instance (which sizeless-vector targets
+// such as SVE use) included, must write the same setups, pixel and sample records, bins and
+// counters, byte for byte (a record's pixels: see same_pixels). The renderer's own tests reach
+// only the best instance of each target family; HWY_SCALAR is reached here alone.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <hwy/targets.h>
+
+#include "binning/bins.hpp"
+#include "engine/src/fast/setup_kernel.hpp"
+#include "engine/src/sample_positions.hpp"
+#include "simd/target_list.hpp"
+
+namespace tessera::fast {
+namespace {
+
+constexpr uint32_t kWidth = 136, kHeight = 72;  // three bin tiles across, two down
+constexpr float kWidthF = 136.0f, kHeightF = 72.0f;
+constexpr uint32_t kTileLog2 = 6;
+
+// Random triangles in clip space: half tiny (about 0.5 to 4 px), the rest up to about 600 px,
+// some with w varying per vertex, and a few crossing the near plane (the scalar clipper's).
+struct Draw {
+  std::vector<Float4> positions;
+  std::vector<float> colors;
+};
+
+Draw random_draw(uint32_t seed, int count) {
+  Draw d;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < count; ++i) {
+    const float side = i % 2 ? 1.0f + 2.0f * u(rng) : 1.0f + 40.0f * u(rng) * u(rng);
+    const float cx = (u(rng) * 1.2f - 0.1f) * kWidthF, cy = (u(rng) * 1.2f - 0.1f) * kHeightF;
+    const float rot = u(rng) * 2.0f * std::numbers::pi_v<float>;
+    const bool perspective = i % 3 == 0;
+    for (int k = 0; k < 3; ++k) {
+      const float a = rot + static_cast<float>(k) * 2.0f * std::numbers::pi_v<float> / 3.0f +
+                      (u(rng) - 0.5f) * 0.7f;
+      const float x = cx + side / std::sqrt(3.0f) * std::cos(a);
+      const float y = cy + side / std::sqrt(3.0f) * std::sin(a);
+      const float w = perspective ? 0.25f + 4.0f * u(rng) : 1.0f;
+      // Every 50th triangle has a vertex behind the near plane (z / w < -1).
+      const float z = i % 50 == 0 && k == 0 ? -2.0f : u(rng);
+      d.positions.push_back(
+          {(2.0f * x / kWidthF - 1.0f) * w, (1.0f - 2.0f * y / kHeightF) * w, z * w, w});
+      for (int c = 0; c < 4; ++c)
+        d.colors.push_back(u(rng));
+    }
+  }
+  return d;
+}
+
+struct Output {
+  SetupList setups;
+  PixelList pixels;
+  SampleList samples;
+  binning::Bins bins;
+  Counters counters;
+};
+
+Output set_up(SetupRangeFn setup, const SetupContext& ctx, const DrawInput& input,
+              size_t triangles) {
+  Output out;
+  const uint32_t tiles_x = (kWidth + 63) >> kTileLog2, tiles_y = (kHeight + 63) >> kTileLog2;
+  out.bins.reset(tiles_x * tiles_y, tiles_x);
+  // In batches, as the renderer calls it.
+  for (size_t t = 0; t < triangles; t += 256)
+    EXPECT_TRUE(setup(ctx, input, t, std::min(triangles, t + 256), out.setups, out.pixels,
+                      out.samples, out.bins, out.counters));
+  out.bins.place();
+  return out;
+}
+
+bool same_bytes(const SetupList& a, const SetupList& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+}
+
+// Records hold up to three or four pixels; the slots past a record's pixel count are never
+// read, and hold whatever its vector computed there for other lanes (so they depend on the
+// vector width). The pixels a record holds must be the same bytes.
+bool same_pixels(const PixelRecord& a, const PixelRecord& b) {
+  const uint32_t n = a.shape & 3u;
+  bool same = a.x0 == b.x0 && a.y0 == b.y0 && a.shape == b.shape;
+  for (uint32_t i = 0; i < n; ++i) {
+    same = same && a.offset[i] == b.offset[i] &&
+           std::memcmp(&a.z[i], &b.z[i], sizeof(float)) == 0 && a.rgba8[i] == b.rgba8[i];
+  }
+  return same;
+}
+
+bool same_pixels(const SampleRecord& a, const SampleRecord& b) {
+  const uint32_t n = a.shape & 7u;
+  const uint32_t nibbles = (1u << (4 * n)) - 1;
+  bool same = a.x0 == b.x0 && a.y0 == b.y0 && a.shape == b.shape &&
+              (a.offsets & nibbles) == (b.offsets & nibbles) &&
+              (a.coverage & nibbles) == (b.coverage & nibbles) &&
+              std::memcmp(&a.z_dx, &b.z_dx, sizeof(float)) == 0 &&
+              std::memcmp(&a.z_dy, &b.z_dy, sizeof(float)) == 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    same = same && std::memcmp(&a.z_base[i], &b.z_base[i], sizeof(float)) == 0 &&
+           a.rgba8[i] == b.rgba8[i];
+  }
+  return same;
+}
+
+template <class List>
+size_t first_difference(const List& a, const List& b) {
+  if (a.size() != b.size()) return 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (!same_pixels(a[i], b[i])) return i;
+  return a.size();
+}
+
+TEST(SetupKernel, EveryCompiledTargetWritesTheSameBytes) {
+  std::vector<int64_t> targets;
+#define TESSERA_ADD_TARGET(bit, ns) targets.push_back(bit);
+  TESSERA_FOR_EACH_SIMD_TARGET(TESSERA_ADD_TARGET)
+#undef TESSERA_ADD_TARGET
+  std::erase_if(targets, [](int64_t bit) { return (hwy::SupportedTargets() & bit) == 0; });
+  ASSERT_NE(std::find(targets.begin(), targets.end(), int64_t{HWY_SCALAR}), targets.end())
+      << "HWY_SCALAR is not compiled into this build";
+  ASSERT_GE(targets.size(), 2u);
+
+  const Draw draw = random_draw(4242, 6000);
+  DrawInput input;
+  input.positions = draw.positions;
+  input.attributes = draw.colors;
+  input.attribute_count = 4;
+  const size_t triangles = draw.positions.size() / 3;
+  PipelineState pipeline;
+  for (uint32_t samples : {1u, 2u, 4u}) {
+    for (bool records : {false, true}) {
+      SCOPED_TRACE(std::to_string(samples) + " samples, records " + (records ? "on" : "off"));
+      SetupContext ctx;
+      ctx.width = kWidth;
+      ctx.height = kHeight;
+      ctx.subpixel_bits = 8;
+      ctx.attribute_count = 4;
+      ctx.pipeline = &pipeline;
+      ctx.guard_band = GuardBand::for_viewport(kWidth, kHeight);
+      ctx.bin_tile_log2 = kTileLog2;
+      ctx.samples = samples;
+      ctx.pixel_records = records && samples == 1;
+      ctx.sample_records = records && samples > 1;
+      const auto pattern = sample_pattern(samples);
+      ctx.sample_dx_lo = ctx.sample_dx_hi = pattern[0].dx;
+      ctx.sample_dy_lo = ctx.sample_dy_hi = pattern[0].dy;
+      for (uint32_t s = 0; s < samples; ++s) {
+        ctx.sample_dx[s] = pattern[s].dx;
+        ctx.sample_dy[s] = pattern[s].dy;
+        ctx.sample_dx_lo = std::min<int32_t>(ctx.sample_dx_lo, pattern[s].dx);
+        ctx.sample_dx_hi = std::max<int32_t>(ctx.sample_dx_hi, pattern[s].dx);
+        ctx.sample_dy_lo = std::min<int32_t>(ctx.sample_dy_lo, pattern[s].dy);
+        ctx.sample_dy_hi = std::max<int32_t>(ctx.sample_dy_hi, pattern[s].dy);
+      }
+      const Output first = set_up(setup_kernel(targets[0]), ctx, input, triangles);
+      // The draw exercises what it should: clipped triangles, setups and records.
+      EXPECT_GT(first.counters.triangles_clipped, 0u);
+      EXPECT_GT(first.setups.size(), 1000u);
+      if (records) {
+        EXPECT_GT(first.pixels.size() + first.samples.size(), 1000u);
+      }
+      for (size_t i = 1; i < targets.size(); ++i) {
+        SCOPED_TRACE(hwy::TargetName(targets[i]) + std::string(" against ") +
+                     hwy::TargetName(targets[0]));
+        const Output other = set_up(setup_kernel(targets[i]), ctx, input, triangles);
+        EXPECT_TRUE(same_bytes(other.setups, first.setups));
+        EXPECT_EQ(first_difference(other.pixels, first.pixels), first.pixels.size());
+        EXPECT_EQ(first_difference(other.samples, first.samples), first.samples.size());
+        EXPECT_EQ(other.bins.references(), first.bins.references());
+        for (uint32_t tile = 0; tile < 6; ++tile) {
+          const auto a = other.bins.tile(tile), b = first.bins.tile(tile);
+          EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << "tile " << tile;
+        }
+        EXPECT_EQ(other.counters.triangles_submitted, first.counters.triangles_submitted);
+        EXPECT_EQ(other.counters.triangles_culled, first.counters.triangles_culled);
+        EXPECT_EQ(other.counters.triangles_clipped, first.counters.triangles_clipped);
+        EXPECT_EQ(other.counters.triangles_rasterized, first.counters.triangles_rasterized);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tessera::fast
