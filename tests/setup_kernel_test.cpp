@@ -150,20 +150,9 @@ TEST(SetupKernel, EveryCompiledTargetWritesTheSameBytes) {
       ctx.pipeline = &pipeline;
       ctx.guard_band = GuardBand::for_viewport(kWidth, kHeight);
       ctx.bin_tile_log2 = kTileLog2;
-      ctx.samples = samples;
+      ctx.set_sample_pattern(sample_pattern(samples));
       ctx.pixel_records = records && samples == 1;
       ctx.sample_records = records && samples > 1;
-      const auto pattern = sample_pattern(samples);
-      ctx.sample_dx_lo = ctx.sample_dx_hi = pattern[0].dx;
-      ctx.sample_dy_lo = ctx.sample_dy_hi = pattern[0].dy;
-      for (uint32_t s = 0; s < samples; ++s) {
-        ctx.sample_dx[s] = pattern[s].dx;
-        ctx.sample_dy[s] = pattern[s].dy;
-        ctx.sample_dx_lo = std::min<int32_t>(ctx.sample_dx_lo, pattern[s].dx);
-        ctx.sample_dx_hi = std::max<int32_t>(ctx.sample_dx_hi, pattern[s].dx);
-        ctx.sample_dy_lo = std::min<int32_t>(ctx.sample_dy_lo, pattern[s].dy);
-        ctx.sample_dy_hi = std::max<int32_t>(ctx.sample_dy_hi, pattern[s].dy);
-      }
       const Output first = set_up(setup_kernel(targets[0]), ctx, input, triangles);
       // The draw exercises what it should: clipped triangles, setups and records.
       EXPECT_GT(first.counters.triangles_clipped, 0u);

@@ -144,21 +144,9 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
   ctx.check_finite = check_finite;
   ctx.bin_tile_log2 = grid.size_log2;
-  ctx.samples = samples;
+  ctx.set_sample_pattern(pattern);
   ctx.pixel_records = pixels_kernel != nullptr;
   ctx.sample_records = samples_kernel != nullptr;
-  for (uint32_t s = 0; s < samples; ++s) {
-    ctx.sample_dx[s] = pattern[s].dx;
-    ctx.sample_dy[s] = pattern[s].dy;
-  }
-  ctx.sample_dx_lo = ctx.sample_dx_hi = pattern[0].dx;
-  ctx.sample_dy_lo = ctx.sample_dy_hi = pattern[0].dy;
-  for (const SampleOffset& o : pattern) {
-    ctx.sample_dx_lo = std::min<int32_t>(ctx.sample_dx_lo, o.dx);
-    ctx.sample_dx_hi = std::max<int32_t>(ctx.sample_dx_hi, o.dx);
-    ctx.sample_dy_lo = std::min<int32_t>(ctx.sample_dy_lo, o.dy);
-    ctx.sample_dy_hi = std::max<int32_t>(ctx.sample_dy_hi, o.dy);
-  }
 
   const uint32_t threads = static_cast<uint32_t>(arena.max_concurrency());
   const uint64_t tiles = grid.tile_count();

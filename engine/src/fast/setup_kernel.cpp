@@ -466,7 +466,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
                 d, hn::Lt(max_step,
                           hn::Set(d, static_cast<double>(narrow_edge_limit(ctx.subpixel_bits))))),
             d, out.narrow + l0);
-  hn::Store(as_double_mask(d, hn::Lt(max_delta, hn::Set(d, 32.0 * scale))), d, out.small + l0);
+  const auto small = hn::Lt(max_delta, hn::Set(d, 32.0 * scale));  // TriangleSetup::small
+  hn::Store(as_double_mask(d, small), d, out.small + l0);
   V centres = zero;  // TriangleSetup::centres
   if (centre_only) {
     const auto small_box = hn::And(hn::Le(hn::Sub(bx1, bx0), hn::Set(d, 1.0)),
@@ -510,8 +511,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     const bool nine = ctx.sample_records && setup_pixels < 9;
     const V last_x = hn::Sub(bx1, bx0), last_y = hn::Sub(by1, by0);  // in the box, from 0
     const V two = hn::Set(d, 2.0);
-    const auto box = hn::And(hn::And(hn::Le(last_x, two), hn::Le(last_y, two)),
-                             hn::Lt(max_delta, hn::Set(d, 32.0 * scale)));
+    const auto box = hn::And(hn::And(hn::Le(last_x, two), hn::Le(last_y, two)), small);
     auto fits = box;  // TriangleSetup::sample_bits holds the box's samples
     if (setup_pixels < 9) fits = hn::AndNot(hn::And(hn::Eq(last_x, two), hn::Eq(last_y, two)), box);
     // Lanes of two samples each: 32-bit lanes, the low 32 bits of lo's and hi's box lanes side

@@ -131,8 +131,8 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   }
   t.sample_bits = 0;
   t.unused = 0;
-  if (ctx.small_sample_bits() && max_delta < (int64_t{32} << bits) && t.x1 - t.x0 <= 2 &&
-      t.y1 - t.y0 <= 2 &&
+  t.small = max_delta < (int64_t{32} << bits);
+  if (ctx.small_sample_bits() && t.small && t.x1 - t.x0 <= 2 && t.y1 - t.y0 <= 2 &&
       static_cast<uint32_t>((t.y1 - t.y0) * 3 + (t.x1 - t.x0) + 1) * ctx.samples <= 32) {
     // Two or four samples, a small triangle and at most 3x3 pixels whose samples fit 32 bits
     // (as the vectorized setup): drawn only if a sample is inside, and the kernel is told which.
@@ -152,7 +152,6 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
     if (t.sample_bits == 0) return;
   }
   t.narrow = max_step < narrow_edge_limit(ctx.subpixel_bits);
-  t.small = max_delta < (int64_t{32} << bits);
 
   auto plane = [&](double v0, double v1, double v2, double& at0, float& gx, float& gy) {
     at0 = weight0[0] * v0 + weight0[1] * v1 + weight0[2] * v2;
@@ -191,6 +190,20 @@ std::array<double, 4> color_of(const float* attributes, uint32_t count) {
 }
 
 }  // namespace
+
+void SetupContext::set_sample_pattern(std::span<const SampleOffset> pattern) {
+  samples = static_cast<uint32_t>(pattern.size());
+  sample_dx_lo = sample_dx_hi = pattern[0].dx;
+  sample_dy_lo = sample_dy_hi = pattern[0].dy;
+  for (size_t s = 0; s < pattern.size(); ++s) {
+    sample_dx[s] = pattern[s].dx;
+    sample_dy[s] = pattern[s].dy;
+    sample_dx_lo = std::min<int32_t>(sample_dx_lo, pattern[s].dx);
+    sample_dx_hi = std::max<int32_t>(sample_dx_hi, pattern[s].dx);
+    sample_dy_lo = std::min<int32_t>(sample_dy_lo, pattern[s].dy);
+    sample_dy_hi = std::max<int32_t>(sample_dy_hi, pattern[s].dy);
+  }
+}
 
 void setup_triangle(const SetupContext& ctx, const std::array<const Float4*, 3>& positions,
                     const std::array<const float*, 3>& attributes, SetupList& out,

@@ -6,11 +6,13 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <type_traits>
 #include <vector>
 
 #include "engine/src/aligned_allocator.hpp"
 #include "engine/src/clip.hpp"
+#include "engine/src/sample_positions.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
 
@@ -54,9 +56,8 @@ struct TriangleSetup {
   std::array<float, 4> qa_dx, qa_dy;
   // Two or four samples per pixel, a small triangle and a bounding box of at most 3x3 pixels
   // whose samples fit 32 bits (any at two samples; at four, all but 3x3): which samples are
-  // inside, bit
-  // ((y - y0) * 3 + (x - x0)) * samples + s, from exact edge functions. 0 when not known (any
-  // other triangle): the kernel then tests the edges itself.
+  // inside, bit ((y - y0) * 3 + (x - x0)) * samples + s, from exact edge functions. 0 when not
+  // known (any other triangle): the kernel then tests the edges itself.
   uint32_t sample_bits;
   uint32_t unused;  // to 160 bytes: five 32-byte pieces (setup_kernel.cpp streams them)
 };
@@ -103,6 +104,10 @@ struct SetupContext {
   // vectorized setup turns triangles whose covered samples lie in at most four pixels of a box
   // of at most 3x3 into sample records (pixel_record.hpp).
   bool sample_records = false;
+
+  // Sets samples, sample_dx / sample_dy and their extremes from a sample pattern
+  // (sample_pattern(n)).
+  void set_sample_pattern(std::span<const SampleOffset> pattern);
 
   // Whether small triangles' setups carry TriangleSetup::sample_bits.
   bool small_sample_bits() const { return samples == 2 || samples == 4; }
