@@ -499,7 +499,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     // kept apart (last_mask).
     //
     // Only small triangles (every edge under 32 px: TriangleSetup::small) are tested, in 32-bit
-    // lanes, two samples of a triangle side by side in its 64-bit lane. Their edges' |dx|, |dy|
+    // lanes, two samples of a triangle side by side in its 64-bit lane (at one sample, two
+    // pixels: one row and the next, below). Their edges' |dx|, |dy|
     // are below 2^(bits + 5) and every pixel centre of the loop lies within 3 px of their
     // vertices' bounding box (under 32 px), so |E| < 2 * 2^(bits + 5) * 35 * 2^bits < 2^28 and
     // |dy dx_s - dx dy_s| < 2 * 2^(bits + 5) * 2^(bits - 1) <= 2^21: the difference is exact
@@ -569,7 +570,53 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     auto mask_bits64 = hn::Zero(d64);  // sample_mask's bits
     auto last_bits64 = hn::Zero(d64);  // nine: the last pixel's samples, bit s
     auto any_bits64 = hn::Zero(d64);   // sample records: the pixels with a covered sample
-    for (uint32_t py = 0, pixel = 0; py < 3; ++py) {
+    // One sample: rows 2r and 2r + 1 of the box side by side in the two halves, so six steps
+    // instead of nine test its pixels (the second pass's row 3 lies in no box: its bits are
+    // dropped, and its values are within the bound above). The same bits py * 3 + px as the
+    // loop below sets (setup: 3.7% faster on `grid`, 1.5% on `tiny`).
+    const bool row_pairs = kPerLane == 2 && samples == 1 && !nine && !ctx.sample_records;
+    if (row_pairs) {
+      VS e_row[3], step_rows[3];  // the sample's edge values less its threshold; two rows' step
+      for (int k = 0; k < 3; ++k) {
+        const auto at = as_int(edge_at[k]), sy = as_int(hn::Mul(edge_dx[k], hn::Set(d, scale)));
+        e_row[k] = hn::Sub(pair(at, hn::Add(at, sy)), least[k][0]);
+        step_rows[k] = hn::Add(step_y[k], step_y[k]);
+      }
+      // Bits 0 and 32 (the two rows): the pixel is in the box.
+      const auto low = hn::Set(d64, 1), high = hn::Set(d64, int64_t{1} << 32);
+      hn::Vec<decltype(d64)> x_ok[3], y_ok[2];
+      for (uint32_t px = 0; px < 3; ++px) {
+        x_ok[px] = hn::VecFromMask(
+            d64, hn::RebindMask(
+                     d64, hn::And(fits, hn::Le(hn::Set(d, static_cast<double>(px)), last_x))));
+      }
+      for (uint32_t r = 0; r < 2; ++r) {
+        y_ok[r] = hn::Or(
+            hn::IfThenElseZero(hn::RebindMask(d64, hn::Le(hn::Set(d, 2.0 * r), last_y)), low),
+            hn::IfThenElseZero(hn::RebindMask(d64, hn::Le(hn::Set(d, 2.0 * r + 1), last_y)), high));
+      }
+      for (uint32_t r = 0; r < 2; ++r) {
+        VS e[3] = {e_row[0], e_row[1], e_row[2]};
+        for (uint32_t px = 0; px < 3; ++px) {
+          // Negative where outside an edge: each half's sign bit, at bits 0 (row 2r) and 32
+          // (row 2r + 1) after the shift.
+          const auto outside = hn::Or(hn::Or(e[0], e[1]), e[2]);
+          const auto sign =
+              hn::ShiftRight<31>(hn::BitCast(hn::RebindToUnsigned<decltype(d64)>(), outside));
+          const auto covered = hn::AndNot(hn::BitCast(d64, sign), hn::And(x_ok[px], y_ok[r]));
+          mask_bits64 =
+              hn::Or(mask_bits64, hn::ShiftLeftSame(covered, static_cast<int>(6 * r + px)));
+          for (int k = 0; k < 3; ++k)
+            e[k] = hn::Sub(e[k], step_x[k]);
+        }
+        for (int k = 0; k < 3; ++k)
+          e_row[k] = hn::Add(e_row[k], step_rows[k]);
+      }
+      // Row 2r + 1's bits from 32 + 6 r + px down to 3 + 6 r + px.
+      mask_bits64 =
+          hn::Or(hn::And(mask_bits64, hn::Set(d64, 0xFFFFFFFF)), hn::ShiftRight<29>(mask_bits64));
+    }
+    for (uint32_t py = 0, pixel = 0; py < 3 && !row_pairs; ++py) {
       const auto row_in_box =
           hn::And(nine ? box : fits, hn::Le(hn::Set(d, static_cast<double>(py)), last_y));
       VS e[3] = {row[0], row[1], row[2]};
