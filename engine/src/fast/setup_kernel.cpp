@@ -49,6 +49,8 @@ struct Out {
   // only).
   uint32_t clipped, kept, binned, pixel;
   alignas(64) double x0[kMaxLanes], y0[kMaxLanes], x1[kMaxLanes], y1[kMaxLanes];
+  // The box's bin tiles (kept lanes; 0 in the others): x0, y0, x1, y1 in bits 0, 16, 32, 48.
+  alignas(64) uint64_t tiles[kMaxLanes];
   alignas(64) double a[3][kMaxLanes], b[3][kMaxLanes], c[3][kMaxLanes];
   alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes], centres[kMaxLanes],
       sample_bits[kMaxLanes];
@@ -407,6 +409,18 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   hn::Store(by0, d, out.y0 + l0);
   hn::Store(bx1, d, out.x1 + l0);
   hn::Store(by1, d, out.y1 + l0);
+  {
+    const hn::RebindToSigned<decltype(d)> dt;
+    const int log2 = static_cast<int>(ctx.bin_tile_log2);
+    const auto tile_of = [&](V v) {
+      return hn::ShiftRightSame(hn::ConvertTo(dt, hn::IfThenElseZero(keep, v)), log2);
+    };
+    const auto tiles =
+        hn::Or(hn::Or(tile_of(bx0), hn::ShiftLeft<16>(tile_of(by0))),
+               hn::Or(hn::ShiftLeft<32>(tile_of(bx1)), hn::ShiftLeft<48>(tile_of(by1))));
+    hn::Store(hn::BitCast(hn::RebindToUnsigned<decltype(d)>(), tiles),
+              hn::RebindToUnsigned<decltype(d)>(), out.tiles + l0);
+  }
 
   // Edges and barycentric planes (see triangle_setup.cpp).
   const V cx = hn::Mul(hn::Add(hn::Mul(bx0, hn::Set(d, 16.0)), hn::Set(d, 8.0)),
@@ -858,9 +872,10 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         setups.resize(next + used - l - 1);
         continue;
       }
-      const binning::TileRect tiles = tile_rect(
-          static_cast<uint32_t>(out.x0[l]), static_cast<uint32_t>(out.y0[l]),
-          static_cast<uint32_t>(out.x1[l]), static_cast<uint32_t>(out.y1[l]), ctx.bin_tile_log2);
+      const uint64_t packed = out.tiles[l];
+      const binning::TileRect tiles = {
+          static_cast<uint16_t>(packed), static_cast<uint16_t>(packed >> 16),
+          static_cast<uint16_t>(packed >> 32), static_cast<uint16_t>(packed >> 48)};
       if ((out.pixel >> l) & 1) {
         if (ctx.sample_records) {
           char* record = reinterpret_cast<char*>(&samples[next_sample]);
