@@ -96,7 +96,8 @@ for w in "${workloads[@]}"; do
     fi
     tm=$(median "${tms[@]}") lm=$(median "${lms[@]}")
     ratio=$(awk -v l="$lm" -v t="$tm" 'BEGIN { printf "%.2f", l / t }')
-    range="$(printf '%s\n' "${ratios[@]}" | sort -g | head -1) to $(printf '%s\n' "${ratios[@]}" | sort -g | tail -1)"
+    mapfile -t sorted < <(printf '%s\n' "${ratios[@]}" | sort -g)
+    range="${sorted[0]} to ${sorted[-1]}"
     rows+=("| $w | $s | $t | $tm | $lm | $ratio | $range | $(median "${tmtri[@]}") | $(median "${lmtri[@]}") |")
   done
   done
