@@ -876,16 +876,17 @@ HWY_NOINLINE void raster_small_hiz(const TileContext& tc, const TriangleSetup& t
   raster_small<kDepth, kColor, kMulti, kCount, true>(tc, t, counters);
 }
 
-// The small path's lane groups for one sample and an RGBA8 or no colour target: windows of 8
-// pixels across and lanes / 8 rows, at the bounding box's first column (not at a block's) and
-// at an even row (every lanes / 8-th), so that a narrow box takes one window per row pair
-// instead of one lane group per row pair in each block it touches (`small`: 3.4 windows per
-// triangle against 5.4 lane groups). A window whose first column is not a block's spans two
-// blocks: the lanes in the first (`in_a`) read and write it at one address, the others the next
-// block at another, each a masked load and store. Every lane's values are raster_block's for its
-// pixel (its own block's plane bases, then the offset to the pixel in that block), and the
-// counters are raster_small's, so the bytes and counts are the same. Targets with 8 or 16 lanes.
-template <DepthMode kDepth, ColorMode kColor, bool kCount>
+// The small path's lane groups at one sample or several, for an RGBA8 or no colour target:
+// windows of 8 pixels across and lanes / 8 rows, at the bounding box's first column (not at a
+// block's) and at an even row (every lanes / 8-th), so that a narrow box takes one window per
+// row pair instead of one lane group per row pair in each block it touches (`small`: 3.4
+// windows per triangle against 5.4 lane groups). A window whose first column is not a block's
+// spans two blocks: the lanes in the first (`in_a`) read and write it at one address, the
+// others the next block at another, each a masked load and store. Every lane's values are
+// raster_block's for its pixel and sample (its own block's plane bases, then the offsets to
+// the sample in that block), and the counters are raster_small's, so the bytes and counts are
+// the same. Targets with 8 or 16 lanes.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
 HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
   static_assert(kColor != ColorMode::kRGBA32F, "windows write RGBA8 colour");
   const hn::ScalableTag<int32_t> di;
@@ -893,11 +894,20 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   const hn::ScalableTag<float> df;
   const int32_t rows = static_cast<int32_t>(hn::Lanes(di) / 8);  // 1 or 2
   const int shift = static_cast<int>(tc.subpixel_bits) - 4;
+  const uint32_t samples = kMulti ? tc.samples : 1;
   TriangleState st;
-  set_up_state<false, true>(tc, t, st);
+  set_up_state<kMulti, true>(tc, t, st);
   const auto lane_e0 = lane_steps(di, st.step_x[0], st.step_y[0]);
   const auto lane_e1 = lane_steps(di, st.step_x[1], st.step_y[1]);
   const auto lane_e2 = lane_steps(di, st.step_x[2], st.step_y[2]);
+  // Multisample: the edges' smallest thresholds over the samples, for a window's first test
+  // (whether any sample of it is covered).
+  constexpr int32_t kNone = std::numeric_limits<int32_t>::max();
+  int32_t threshold_lo[3] = {kNone, kNone, kNone};
+  for (uint32_t s = 0; s < samples; ++s) {
+    for (int e = 0; e < 3; ++e)
+      threshold_lo[e] = std::min(threshold_lo[e], st.edge_threshold[s][e]);
+  }
   const int32_t px0 = st.px0, px1 = st.px1, py1 = st.py1;
   const int32_t first_col = px0 & 7;
   const auto col = hn::Load(di, kPixels.x);
@@ -931,12 +941,15 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       const auto e2 = hn::Add(hn::Set(di, e_win[2]), lane_e2);
       for (int e = 0; e < 3; ++e)
         e_win[e] += st.step_x[e] * 8;
-      auto cov = hn::And(rows_in, hn::Lt(col, hn::Set(di, px1 - wx + 1)));
-      cov = hn::And(cov, hn::Gt(e0, hn::Set(di, st.edge_threshold[0][0])));
-      cov = hn::And(cov, hn::Gt(e1, hn::Set(di, st.edge_threshold[0][1])));
-      cov = hn::And(cov, hn::Gt(e2, hn::Set(di, st.edge_threshold[0][2])));
-      if (hn::AllFalse(di, cov)) continue;
-      if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov));
+      const auto box = hn::And(rows_in, hn::Lt(col, hn::Set(di, px1 - wx + 1)));
+      // Inside edge e at sample s when E > threshold (one sample: the only coverage).
+      const auto covered = [&](const int32_t(&threshold)[3]) {
+        auto m = hn::And(box, hn::Gt(e0, hn::Set(di, threshold[0])));
+        m = hn::And(m, hn::Gt(e1, hn::Set(di, threshold[1])));
+        return hn::And(m, hn::Gt(e2, hn::Set(di, threshold[2])));
+      };
+      const auto cov_any = covered(threshold_lo);
+      if (hn::AllFalse(di, cov_any)) continue;
 
       // The window's blocks: a, and b to its right when some lane of the box lies there.
       const int32_t bx = wx >> 3;
@@ -953,34 +966,67 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
                    : hn::Set(df, a_base);
       };
 
-      auto pass = hn::RebindMask(df, cov);
+      auto pass_bits = hn::Zero(du);                // bit s: sample s passed (multisample)
+      auto pass_one = hn::RebindMask(df, cov_any);  // the one sample's passing lanes
+      if constexpr (kCount && !kMulti)
+        st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov_any));
       if constexpr (kDepth != DepthMode::kOff) {
         const float za = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
         const float zb = static_cast<float>(t.z0 + t.z_dx * (dx + 8.0) + t.z_dy * dy);
-        auto z = hn::Add(bases(za, zb), hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)),
-                                                hn::Mul(fy, hn::Set(df, t.z_dy))));
-        z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
-        if (depth_scale > 0.0f) z = hn::Round(hn::Mul(z, hn::Set(df, depth_scale)));
-        auto stored = hn::MaskedLoad(in_a_f, df, tc.depth + at_a);
-        if (two)
-          stored = hn::IfThenElse(in_a_f, stored, hn::MaskedLoad(in_b_f, df, tc.depth + at_b));
-        pass = hn::And(pass, depth_passes(df, compare, z, stored));
-        if constexpr (kDepth == DepthMode::kTestWrite) {
-          const auto pass_a = hn::And(pass, in_a_f);
-          hn::BlendedStore(z, pass_a, df, tc.depth + at_a);
-          if (!hn::AllFalse(df, pass_a)) mark_hiz_dirty(tc, block_a);
-          if (two) {
-            const auto pass_b = hn::And(pass, in_b_f);
-            hn::BlendedStore(z, pass_b, df, tc.depth + at_b);
-            if (!hn::AllFalse(df, pass_b)) mark_hiz_dirty(tc, block_b);
+        const auto z_rel =
+            hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
+        for (uint32_t s = 0; s < samples; ++s) {
+          auto pass = pass_one;
+          if constexpr (kMulti) {
+            pass = hn::RebindMask(df, covered(st.edge_threshold[s]));
+            if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(df, pass));
+          }
+          auto z = hn::Add(kMulti ? bases(za + st.z_offset[s], zb + st.z_offset[s]) : bases(za, zb),
+                           z_rel);
+          z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
+          if (depth_scale > 0.0f) z = hn::Round(hn::Mul(z, hn::Set(df, depth_scale)));
+          float* const plane = tc.depth + s * kSamplePlane;
+          auto stored = hn::MaskedLoad(in_a_f, df, plane + at_a);
+          if (two)
+            stored = hn::IfThenElse(in_a_f, stored, hn::MaskedLoad(in_b_f, df, plane + at_b));
+          pass = hn::And(pass, depth_passes(df, compare, z, stored));
+          if constexpr (kDepth == DepthMode::kTestWrite) {
+            hn::BlendedStore(z, hn::And(pass, in_a_f), df, plane + at_a);
+            if (two) hn::BlendedStore(z, hn::And(pass, in_b_f), df, plane + at_b);
+          }
+          if constexpr (kCount) st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
+          if constexpr (kMulti) {
+            pass_bits = hn::Or(pass_bits,
+                               hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
+          } else {
+            pass_one = pass;
           }
         }
+        if constexpr (kDepth == DepthMode::kTestWrite) {
+          // The blocks with a sample written (any passing sample was).
+          const auto wrote =
+              kMulti ? hn::RebindMask(df, hn::Ne(pass_bits, hn::Zero(du))) : pass_one;
+          if (!hn::AllFalse(df, hn::And(wrote, in_a_f))) mark_hiz_dirty(tc, block_a);
+          if (two && !hn::AllFalse(df, hn::And(wrote, in_b_f))) mark_hiz_dirty(tc, block_b);
+        }
+      } else if constexpr (kMulti) {
+        for (uint32_t s = 0; s < samples; ++s) {
+          const auto pass = covered(st.edge_threshold[s]);
+          if constexpr (kCount) {
+            st.covered += static_cast<uint32_t>(hn::CountTrue(di, pass));
+            st.passed += static_cast<uint32_t>(hn::CountTrue(di, pass));
+          }
+          pass_bits =
+              hn::Or(pass_bits, hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
+        }
+      } else if constexpr (kCount) {
+        st.passed += static_cast<uint32_t>(hn::CountTrue(di, cov_any));
       }
-      if constexpr (kCount) st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
 
       if constexpr (kColor == ColorMode::kRGBA8) {
-        if (hn::AllFalse(df, pass)) continue;
-        if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(df, pass));
+        const auto any = kMulti ? hn::RebindMask(df, hn::Ne(pass_bits, hn::Zero(du))) : pass_one;
+        if (hn::AllFalse(df, any)) continue;
+        if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(df, any));
         const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
         const float fdx_b = static_cast<float>(dx + 8.0);
         const auto plane = [&](float base, float gx, float gy, float& a_base, float& b_base) {
@@ -1002,14 +1048,14 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
           green = hn::Mul(green, inv_q);
           blue = hn::Mul(blue, inv_q);
           alpha = hn::Mul(alpha, inv_q);
-          const auto beyond = hn::AndNot(hn::Gt(q, hn::Zero(df)), pass);
+          const auto beyond = hn::AndNot(hn::Gt(q, hn::Zero(df)), any);
           if (!hn::AllFalse(df, beyond)) {
-            // Beyond the triangle's horizon at the pixel centre: the one sample is the centre,
-            // which passed, so q > 0 there in exact arithmetic; raster_block evaluates the
-            // planes at that sample again (offset 0) in the same order.
+            // The pixel centre lies beyond the triangle's horizon: evaluate at the pixel's
+            // first passing sample instead, as raster_block does, in the same order.
             alignas(64) float channel[4][64];
             alignas(64) float lane_fx[64], lane_fy[64];
-            alignas(64) int32_t lane_a[64];
+            alignas(64) int32_t lane_a[64], lane_beyond[64];
+            alignas(64) uint32_t passing[64];
             hn::Store(red, df, channel[0]);
             hn::Store(green, df, channel[1]);
             hn::Store(blue, df, channel[2]);
@@ -1017,12 +1063,13 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
             hn::Store(fx, df, lane_fx);
             hn::Store(fy, df, lane_fy);
             hn::Store(hn::VecFromMask(di, in_a), di, lane_a);
-            alignas(64) int32_t lane_beyond[64];
             hn::Store(hn::VecFromMask(di, hn::RebindMask(di, beyond)), di, lane_beyond);
+            hn::Store(pass_bits, du, passing);
             for (size_t l = 0; l < hn::Lanes(df); ++l) {
               if (lane_beyond[l] == 0) continue;
+              const uint32_t s = kMulti ? static_cast<uint32_t>(std::countr_zero(passing[l])) : 0;
               const bool a = lane_a[l] != 0 || !two;
-              const float sx = lane_fx[l] + tc.sample_fx[0], sy = lane_fy[l] + tc.sample_fy[0];
+              const float sx = lane_fx[l] + tc.sample_fx[s], sy = lane_fy[l] + tc.sample_fy[s];
               const float qs = (a ? q_a : q_b) + (t.q_dx * sx + t.q_dy * sy);
               for (int c = 0; c < 4; ++c) {
                 channel[c][l] =
@@ -1039,10 +1086,15 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
             hn::Or(hn::Or(to_unorm8(df, red), hn::ShiftLeft<8>(to_unorm8(df, green))),
                    hn::Or(hn::ShiftLeft<16>(to_unorm8(df, blue)),
                           hn::ShiftLeft<24>(to_unorm8(df, alpha))));
-        uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8);
-        hn::BlendedStore(packed, hn::RebindMask(du, hn::And(pass, in_a_f)), du, colour + at_a);
-        if (two) {
-          hn::BlendedStore(packed, hn::RebindMask(du, hn::And(pass, in_b_f)), du, colour + at_b);
+        uint32_t* const colour = reinterpret_cast<uint32_t*>(tc.rgba8);
+        for (uint32_t s = 0; s < samples; ++s) {
+          const auto m =
+              kMulti ? hn::RebindMask(df, hn::TestBit(pass_bits, hn::Set(du, 1u << s))) : any;
+          uint32_t* const target = colour + s * kSamplePlane;
+          hn::BlendedStore(packed, hn::RebindMask(du, hn::And(m, in_a_f)), du, target + at_a);
+          if (two) {
+            hn::BlendedStore(packed, hn::RebindMask(du, hn::And(m, in_b_f)), du, target + at_b);
+          }
         }
       }
     }
@@ -1375,10 +1427,10 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
   } else if (tc.hiz && (t.x1 - t.x0 >= 16 || t.y1 - t.y0 >= 16)) {
     raster_small_hiz<kDepth, kColor, kMulti, kCount>(tc, t, counters);
   } else {
-    if constexpr (!kMulti && kColor != ColorMode::kRGBA32F) {
+    if constexpr (kColor != ColorMode::kRGBA32F) {
       const size_t lanes = hn::Lanes(hn::ScalableTag<int32_t>());
       if (lanes == 8 || lanes == 16) {
-        raster_window<kDepth, kColor, kCount>(tc, t, counters);
+        raster_window<kDepth, kColor, kMulti, kCount>(tc, t, counters);
         return;
       }
     }
