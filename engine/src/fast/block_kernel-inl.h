@@ -116,6 +116,23 @@ HWY_INLINE VF plane_of_lanes(DF df, VF fx, VF fy, const float* offsets, float ba
   }
 }
 
+// The four colour channels' lanes to and from memory, for the per-lane fallback of pixels
+// beyond a triangle's horizon.
+template <class DF, class VF>
+HWY_INLINE void store_channels(DF df, VF r, VF g, VF b, VF a, float (&channel)[4][64]) {
+  hn::Store(r, df, channel[0]);
+  hn::Store(g, df, channel[1]);
+  hn::Store(b, df, channel[2]);
+  hn::Store(a, df, channel[3]);
+}
+template <class DF, class VF>
+HWY_INLINE void load_channels(DF df, const float (&channel)[4][64], VF& r, VF& g, VF& b, VF& a) {
+  r = hn::Load(df, channel[0]);
+  g = hn::Load(df, channel[1]);
+  b = hn::Load(df, channel[2]);
+  a = hn::Load(df, channel[3]);
+}
+
 enum class HizVerdict { kTest, kReject, kAccept };
 
 // Whether every sample of a block fails (reject) or passes (accept) the depth test, from the
@@ -452,10 +469,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
           // at the pixel's first passing sample instead, which is inside the triangle.
           alignas(64) float channel[4][64];
           alignas(64) uint32_t passing[64];
-          hn::Store(r, df, channel[0]);
-          hn::Store(g, df, channel[1]);
-          hn::Store(b, df, channel[2]);
-          hn::Store(a, df, channel[3]);
+          store_channels(df, r, g, b, a, channel);
           hn::Store(pass_bits, du, passing);
           for (size_t l = 0; l < lanes; ++l) {
             const float lx = kPixels.fx[i + l], ly = kPixels.fy[i + l];
@@ -469,10 +483,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
               channel[c][l] = (qa_base[c] + (t.qa_dx[c] * sx + t.qa_dy[c] * sy)) / qs;
             }
           }
-          r = hn::Load(df, channel[0]);
-          g = hn::Load(df, channel[1]);
-          b = hn::Load(df, channel[2]);
-          a = hn::Load(df, channel[3]);
+          load_channels(df, channel, r, g, b, a);
         }
       }
       if constexpr (kColor == ColorMode::kRGBA8) {
@@ -799,11 +810,30 @@ HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
   }
 }
 
+// Small triangles (every edge under 32 px across) skip the corner classification: for the
+// few blocks they touch, testing every edge costs less. Every sample of those blocks lies
+// within 40 px of each vertex and |a|, |b| < 2^(bits+5), so |E| < 2^(2 bits + 12): all
+// three edges step exactly in int32 from block to block. A block is skipped when an edge is
+// negative at all its samples: its largest value over the block's pixel centres, plus half
+// a pixel's change in x and y for the sample offsets (|offset| <= 1/2 px), is below zero.
+// Sets each edge's value at the centre of block (bx0, by0)'s first pixel (e_block) and that
+// margin (reach): a block is outside edge e when its e_block[e] + reach[e] < 0.
+HWY_INLINE void small_block_edges(const TileContext& tc, const TriangleSetup& t,
+                                  const TriangleState& st, int32_t bx0, int32_t by0,
+                                  int32_t (&e_block)[3], int32_t (&reach)[3]) {
+  const int shift = static_cast<int>(tc.subpixel_bits) - 4;
+  const int64_t ox = (int64_t{bx0} * 128 + 8) << shift, oy = (int64_t{by0} * 128 + 8) << shift;
+  for (int e = 0; e < 3; ++e) {
+    e_block[e] = static_cast<int32_t>(t.a[e] * ox + t.b[e] * oy + t.c[e]);
+    reach[e] = std::max(st.step_x[e] * 7, 0) + std::max(st.step_y[e] * 7, 0) +
+               ((std::abs(st.step_x[e]) + std::abs(st.step_y[e])) >> 1);
+  }
+}
+
 // The small-triangle path (RasterTriangle's), with kHiz its Hi-Z test per block.
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kHiz>
 HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
   const hn::ScalableTag<int32_t> di;
-  const int shift = static_cast<int>(tc.subpixel_bits) - 4;
   constexpr bool kTestDepth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
   TriangleState st;
   set_up_state<kMulti, true>(tc, t, st);
@@ -812,19 +842,8 @@ HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, Coun
   const auto lane_e2 = lane_steps(di, st.step_x[2], st.step_y[2]);
   const int32_t bx0 = st.px0 >> 3, by0 = st.py0 >> 3, bx1 = st.px1 >> 3, by1 = st.py1 >> 3;
 
-  // Small triangles (every edge under 32 px across) skip the corner classification: for the
-  // few blocks they touch, testing every edge costs less. Every sample of those blocks lies
-  // within 40 px of each vertex and |a|, |b| < 2^(bits+5), so |E| < 2^(2 bits + 12): all
-  // three edges step exactly in int32 from block to block. A block is skipped when an edge is
-  // negative at all its samples: its largest value over the block's pixel centres, plus half
-  // a pixel's change in x and y for the sample offsets (|offset| <= 1/2 px), is below zero.
-  const int64_t ox = (int64_t{bx0} * 128 + 8) << shift, oy = (int64_t{by0} * 128 + 8) << shift;
   int32_t e_row[3], reach[3];
-  for (int e = 0; e < 3; ++e) {
-    e_row[e] = static_cast<int32_t>(t.a[e] * ox + t.b[e] * oy + t.c[e]);
-    reach[e] = std::max(st.step_x[e] * 7, 0) + std::max(st.step_y[e] * 7, 0) +
-               ((std::abs(st.step_x[e]) + std::abs(st.step_y[e])) >> 1);
-  }
+  small_block_edges(tc, t, st, bx0, by0, e_row, reach);
   // Hi-Z (kHiz): the triangle's depth range (its vertices', widened by the margin that covers
   // the kernel's float rounding, as the general path's) against each block's bounds.
   float hiz_lo = 0.0f, hiz_hi = 0.0f;
@@ -1058,10 +1077,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
             alignas(64) float lane_fx[64], lane_fy[64];
             alignas(64) int32_t lane_a[64], lane_beyond[64];
             alignas(64) uint32_t passing[64];
-            hn::Store(red, df, channel[0]);
-            hn::Store(green, df, channel[1]);
-            hn::Store(blue, df, channel[2]);
-            hn::Store(alpha, df, channel[3]);
+            store_channels(df, red, green, blue, alpha, channel);
             hn::Store(fx, df, lane_fx);
             hn::Store(fy, df, lane_fy);
             hn::Store(hn::VecFromMask(di, in_a), di, lane_a);
@@ -1078,10 +1094,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
                     ((a ? qa_a[c] : qa_b[c]) + (t.qa_dx[c] * sx + t.qa_dy[c] * sy)) / qs;
               }
             }
-            red = hn::Load(df, channel[0]);
-            green = hn::Load(df, channel[1]);
-            blue = hn::Load(df, channel[2]);
-            alpha = hn::Load(df, channel[3]);
+            load_channels(df, channel, red, green, blue, alpha);
           }
         }
         const auto packed =
@@ -1104,13 +1117,8 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   if constexpr (kCount) {
     // The blocks raster_small visits and the ones its test rejects.
     const int32_t bx0 = px0 >> 3, by0 = st.py0 >> 3, bx1 = px1 >> 3, by1 = py1 >> 3;
-    const int64_t cx = (int64_t{bx0} * 128 + 8) << shift, cy = (int64_t{by0} * 128 + 8) << shift;
     int32_t e_block_row[3], reach[3];
-    for (int e = 0; e < 3; ++e) {
-      e_block_row[e] = static_cast<int32_t>(t.a[e] * cx + t.b[e] * cy + t.c[e]);
-      reach[e] = std::max(st.step_x[e] * 7, 0) + std::max(st.step_y[e] * 7, 0) +
-                 ((std::abs(st.step_x[e]) + std::abs(st.step_y[e])) >> 1);
-    }
+    small_block_edges(tc, t, st, bx0, by0, e_block_row, reach);
     uint64_t rejected = 0, visited = 0;
     for (int32_t by = by0; by <= by1; ++by) {
       int32_t e_block[3] = {e_block_row[0], e_block_row[1], e_block_row[2]};
