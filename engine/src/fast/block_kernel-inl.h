@@ -901,7 +901,8 @@ HWY_NOINLINE void raster_small_hiz(const TileContext& tc, const TriangleSetup& t
 // windows of 8 pixels across and lanes / 8 rows, at the bounding box's first column (not at a
 // block's) and at an even row (every lanes / 8-th), so that a narrow box takes one window per
 // row pair instead of one lane group per row pair in each block it touches (in a model of
-// `small`'s triangles, 3.4 windows per triangle against 5.4 lane groups). A window whose first
+// `small`'s triangles, 3.4 windows per triangle against 5.4 lane groups). The box is at most 8
+// pixels wide (kWindowBox), so one window spans each row pair. A window whose first
 // column is not a block's spans two blocks: the lanes in the first (`in_a`) read and write it at
 // one address, the others the next block at another, each a masked load and store. Every lane's
 // values are raster_block's for its pixel and sample (its own block's plane bases, then the offsets
@@ -933,6 +934,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   const int32_t first_col = px0 & 7;
   const auto col = hn::Load(di, kPixels.x);
   const auto row = hn::Load(di, kPixels.y);
+  const auto cols_in = hn::Lt(col, hn::Set(di, px1 - px0 + 1));
   const auto in_a = hn::Lt(col, hn::Set(di, 8 - first_col));
   const auto in_a_f = hn::RebindMask(df, in_a);
   const auto in_b_f = hn::Not(in_a_f);
@@ -947,169 +949,160 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
     e_row[e] = static_cast<int32_t>(t.a[e] * ox + t.b[e] * oy + t.c[e]);
   const CompareOp compare = tc.compare;
   const float depth_scale = tc.depth_scale;
+  // The windows' blocks: a, and b to its right when some lane of the box lies there; their
+  // first pixels' offsets from the plane origin in x.
+  const int32_t window_bx = px0 >> 3;
+  const bool two = first_col != 0 && (window_bx + 1) * 8 <= px1;
+  const double dx = window_bx * 8.0 - t.x0;
 
   for (int32_t wy = wy0; wy <= py1; wy += rows) {
-    int32_t e_win[3] = {e_row[0], e_row[1], e_row[2]};
+    const auto e0 = hn::Add(hn::Set(di, e_row[0]), lane_e0);
+    const auto e1 = hn::Add(hn::Set(di, e_row[1]), lane_e1);
+    const auto e2 = hn::Add(hn::Set(di, e_row[2]), lane_e2);
     for (int e = 0; e < 3; ++e)
       e_row[e] += st.step_y[e] * rows;
     const int32_t by = wy >> 3, r = wy & 7;
     const auto fy = hn::Add(fy_lane, hn::Set(df, static_cast<float>(r)));
-    const auto rows_in = hn::Lt(row, hn::Set(di, py1 - wy + 1));
     const double dy = by * 8.0 - t.y0;
-    for (int32_t wx = px0; wx <= px1; wx += 8) {
-      const auto e0 = hn::Add(hn::Set(di, e_win[0]), lane_e0);
-      const auto e1 = hn::Add(hn::Set(di, e_win[1]), lane_e1);
-      const auto e2 = hn::Add(hn::Set(di, e_win[2]), lane_e2);
-      for (int e = 0; e < 3; ++e)
-        e_win[e] += st.step_x[e] * 8;
-      const auto box = hn::And(rows_in, hn::Lt(col, hn::Set(di, px1 - wx + 1)));
-      // Inside edge e at sample s when E > threshold (one sample: the only coverage).
-      const auto covered = [&](const int32_t(&threshold)[3]) {
-        auto m = hn::And(box, hn::Gt(e0, hn::Set(di, threshold[0])));
-        m = hn::And(m, hn::Gt(e1, hn::Set(di, threshold[1])));
-        return hn::And(m, hn::Gt(e2, hn::Set(di, threshold[2])));
-      };
-      const auto cov_any = covered(threshold_lo);
-      if (hn::AllFalse(di, cov_any)) continue;
+    const auto box = hn::And(cols_in, hn::Lt(row, hn::Set(di, py1 - wy + 1)));
+    // Inside edge e at sample s when E > threshold (one sample: the only coverage).
+    const auto covered = [&](const int32_t(&threshold)[3]) {
+      auto m = hn::And(box, hn::Gt(e0, hn::Set(di, threshold[0])));
+      m = hn::And(m, hn::Gt(e1, hn::Set(di, threshold[1])));
+      return hn::And(m, hn::Gt(e2, hn::Set(di, threshold[2])));
+    };
+    const auto cov_any = covered(threshold_lo);
+    if (hn::AllFalse(di, cov_any)) continue;
 
-      // The window's blocks: a, and b to its right when some lane of the box lies there.
-      const int32_t bx = wx >> 3;
-      const bool two = first_col != 0 && (bx + 1) * 8 <= px1;
-      const size_t block_a =
-          static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
-      const size_t block_b = block_a + 1;
-      const size_t at_a = block_a * 64 + static_cast<size_t>(r * 8 + first_col);
-      const size_t at_b = block_b * 64 + static_cast<size_t>(r * 8 + first_col) - 8;
-      const double dx = bx * 8.0 - t.x0;
-      // A plane's bases at the two blocks' first pixels, lane by lane (raster_block's).
-      const auto bases = [&](float a_base, float b_base) {
-        return two ? hn::IfThenElse(in_a_f, hn::Set(df, a_base), hn::Set(df, b_base))
-                   : hn::Set(df, a_base);
-      };
+    const size_t block_a =
+        static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (window_bx - st.tile_bx));
+    const size_t block_b = block_a + 1;
+    const size_t at_a = block_a * 64 + static_cast<size_t>(r * 8 + first_col);
+    const size_t at_b = block_b * 64 + static_cast<size_t>(r * 8 + first_col) - 8;
+    // A plane's bases at the two blocks' first pixels, lane by lane (raster_block's).
+    const auto bases = [&](float a_base, float b_base) {
+      return two ? hn::IfThenElse(in_a_f, hn::Set(df, a_base), hn::Set(df, b_base))
+                 : hn::Set(df, a_base);
+    };
 
-      auto pass_bits = hn::Zero(du);                // bit s: sample s passed (multisample)
-      auto pass_one = hn::RebindMask(df, cov_any);  // the one sample's passing lanes
-      if constexpr (kCount && !kMulti)
-        st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov_any));
-      if constexpr (kDepth != DepthMode::kOff) {
-        const float za = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
-        const float zb = static_cast<float>(t.z0 + t.z_dx * (dx + 8.0) + t.z_dy * dy);
-        const auto z_rel =
-            hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
-        for (uint32_t s = 0; s < samples; ++s) {
-          auto pass = pass_one;
-          if constexpr (kMulti) {
-            pass = hn::RebindMask(df, covered(st.edge_threshold[s]));
-            if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(df, pass));
-          }
-          auto z = hn::Add(kMulti ? bases(za + st.z_offset[s], zb + st.z_offset[s]) : bases(za, zb),
-                           z_rel);
-          z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
-          if (depth_scale > 0.0f) z = hn::Round(hn::Mul(z, hn::Set(df, depth_scale)));
-          float* const plane = tc.depth + s * kSamplePlane;
-          auto stored = hn::MaskedLoad(in_a_f, df, plane + at_a);
-          if (two)
-            stored = hn::IfThenElse(in_a_f, stored, hn::MaskedLoad(in_b_f, df, plane + at_b));
-          pass = hn::And(pass, depth_passes(df, compare, z, stored));
-          if constexpr (kDepth == DepthMode::kTestWrite) {
-            hn::BlendedStore(z, hn::And(pass, in_a_f), df, plane + at_a);
-            if (two) hn::BlendedStore(z, hn::And(pass, in_b_f), df, plane + at_b);
-          }
-          if constexpr (kCount) st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
-          if constexpr (kMulti) {
-            pass_bits = hn::Or(pass_bits,
-                               hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
-          } else {
-            pass_one = pass;
-          }
+    auto pass_bits = hn::Zero(du);                // bit s: sample s passed (multisample)
+    auto pass_one = hn::RebindMask(df, cov_any);  // the one sample's passing lanes
+    if constexpr (kCount && !kMulti)
+      st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov_any));
+    if constexpr (kDepth != DepthMode::kOff) {
+      const float za = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
+      const float zb = static_cast<float>(t.z0 + t.z_dx * (dx + 8.0) + t.z_dy * dy);
+      const auto z_rel =
+          hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
+      for (uint32_t s = 0; s < samples; ++s) {
+        auto pass = pass_one;
+        if constexpr (kMulti) {
+          pass = hn::RebindMask(df, covered(st.edge_threshold[s]));
+          if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(df, pass));
         }
+        auto z = hn::Add(kMulti ? bases(za + st.z_offset[s], zb + st.z_offset[s]) : bases(za, zb),
+                         z_rel);
+        z = hn::Min(hn::Max(z, hn::Zero(df)), hn::Set(df, 1.0f));
+        if (depth_scale > 0.0f) z = hn::Round(hn::Mul(z, hn::Set(df, depth_scale)));
+        float* const plane = tc.depth + s * kSamplePlane;
+        auto stored = hn::MaskedLoad(in_a_f, df, plane + at_a);
+        if (two) stored = hn::IfThenElse(in_a_f, stored, hn::MaskedLoad(in_b_f, df, plane + at_b));
+        pass = hn::And(pass, depth_passes(df, compare, z, stored));
         if constexpr (kDepth == DepthMode::kTestWrite) {
-          // The blocks with a sample written (any passing sample was).
-          const auto wrote =
-              kMulti ? hn::RebindMask(df, hn::Ne(pass_bits, hn::Zero(du))) : pass_one;
-          if (!hn::AllFalse(df, hn::And(wrote, in_a_f))) mark_hiz_dirty(tc, block_a);
-          if (two && !hn::AllFalse(df, hn::And(wrote, in_b_f))) mark_hiz_dirty(tc, block_b);
+          hn::BlendedStore(z, hn::And(pass, in_a_f), df, plane + at_a);
+          if (two) hn::BlendedStore(z, hn::And(pass, in_b_f), df, plane + at_b);
         }
-      } else if constexpr (kMulti) {
-        for (uint32_t s = 0; s < samples; ++s) {
-          const auto pass = covered(st.edge_threshold[s]);
-          if constexpr (kCount) {
-            st.covered += static_cast<uint32_t>(hn::CountTrue(di, pass));
-            st.passed += static_cast<uint32_t>(hn::CountTrue(di, pass));
-          }
+        if constexpr (kCount) st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
+        if constexpr (kMulti) {
           pass_bits =
               hn::Or(pass_bits, hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
+        } else {
+          pass_one = pass;
         }
-      } else if constexpr (kCount) {
-        st.passed += static_cast<uint32_t>(hn::CountTrue(di, cov_any));
       }
-
-      if constexpr (kColor == ColorMode::kRGBA8) {
-        const auto any = kMulti ? hn::RebindMask(df, hn::Ne(pass_bits, hn::Zero(du))) : pass_one;
-        if (hn::AllFalse(df, any)) continue;
-        if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(df, any));
-        const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
-        const float fdx_b = static_cast<float>(dx + 8.0);
-        const auto plane = [&](float base, float gx, float gy, float& a_base, float& b_base) {
-          a_base = base + (gx * fdx + gy * fdy);
-          b_base = base + (gx * fdx_b + gy * fdy);
-          return hn::Add(bases(a_base, b_base),
-                         hn::Add(hn::Mul(fx, hn::Set(df, gx)), hn::Mul(fy, hn::Set(df, gy))));
-        };
-        float qa_a[4], qa_b[4];
-        auto red = plane(t.qa0[0], t.qa_dx[0], t.qa_dy[0], qa_a[0], qa_b[0]);
-        auto green = plane(t.qa0[1], t.qa_dx[1], t.qa_dy[1], qa_a[1], qa_b[1]);
-        auto blue = plane(t.qa0[2], t.qa_dx[2], t.qa_dy[2], qa_a[2], qa_b[2]);
-        auto alpha = plane(t.qa0[3], t.qa_dx[3], t.qa_dy[3], qa_a[3], qa_b[3]);
-        if (!t.flat_q) {
-          float q_a, q_b;
-          const auto q = plane(t.q0, t.q_dx, t.q_dy, q_a, q_b);
-          const auto inv_q = hn::Div(hn::Set(df, 1.0f), q);
-          red = hn::Mul(red, inv_q);
-          green = hn::Mul(green, inv_q);
-          blue = hn::Mul(blue, inv_q);
-          alpha = hn::Mul(alpha, inv_q);
-          const auto beyond = hn::AndNot(hn::Gt(q, hn::Zero(df)), any);
-          if (!hn::AllFalse(df, beyond)) {
-            // The pixel centre lies beyond the triangle's horizon: evaluate at the pixel's
-            // first passing sample instead, as raster_block does, in the same order.
-            alignas(64) float channel[4][64];
-            alignas(64) float lane_fx[64], lane_fy[64];
-            alignas(64) int32_t lane_a[64], lane_beyond[64];
-            alignas(64) uint32_t passing[64];
-            store_channels(df, red, green, blue, alpha, channel);
-            hn::Store(fx, df, lane_fx);
-            hn::Store(fy, df, lane_fy);
-            hn::Store(hn::VecFromMask(di, in_a), di, lane_a);
-            hn::Store(hn::VecFromMask(di, hn::RebindMask(di, beyond)), di, lane_beyond);
-            hn::Store(pass_bits, du, passing);
-            for (size_t l = 0; l < hn::Lanes(df); ++l) {
-              if (lane_beyond[l] == 0) continue;
-              const uint32_t s = kMulti ? static_cast<uint32_t>(std::countr_zero(passing[l])) : 0;
-              const bool a = lane_a[l] != 0 || !two;
-              const float sx = lane_fx[l] + tc.sample_fx[s], sy = lane_fy[l] + tc.sample_fy[s];
-              const float qs = (a ? q_a : q_b) + (t.q_dx * sx + t.q_dy * sy);
-              for (int c = 0; c < 4; ++c) {
-                channel[c][l] =
-                    ((a ? qa_a[c] : qa_b[c]) + (t.qa_dx[c] * sx + t.qa_dy[c] * sy)) / qs;
-              }
-            }
-            load_channels(df, channel, red, green, blue, alpha);
-          }
+      if constexpr (kDepth == DepthMode::kTestWrite) {
+        // The blocks with a sample written (any passing sample was).
+        const auto wrote = kMulti ? hn::RebindMask(df, hn::Ne(pass_bits, hn::Zero(du))) : pass_one;
+        if (!hn::AllFalse(df, hn::And(wrote, in_a_f))) mark_hiz_dirty(tc, block_a);
+        if (two && !hn::AllFalse(df, hn::And(wrote, in_b_f))) mark_hiz_dirty(tc, block_b);
+      }
+    } else if constexpr (kMulti) {
+      for (uint32_t s = 0; s < samples; ++s) {
+        const auto pass = covered(st.edge_threshold[s]);
+        if constexpr (kCount) {
+          st.covered += static_cast<uint32_t>(hn::CountTrue(di, pass));
+          st.passed += static_cast<uint32_t>(hn::CountTrue(di, pass));
         }
-        const auto packed =
-            hn::Or(hn::Or(to_unorm8(df, red), hn::ShiftLeft<8>(to_unorm8(df, green))),
-                   hn::Or(hn::ShiftLeft<16>(to_unorm8(df, blue)),
-                          hn::ShiftLeft<24>(to_unorm8(df, alpha))));
-        uint32_t* const colour = reinterpret_cast<uint32_t*>(tc.rgba8);
-        for (uint32_t s = 0; s < samples; ++s) {
-          const auto m =
-              kMulti ? hn::RebindMask(df, hn::TestBit(pass_bits, hn::Set(du, 1u << s))) : any;
-          uint32_t* const target = colour + s * kSamplePlane;
-          hn::BlendedStore(packed, hn::RebindMask(du, hn::And(m, in_a_f)), du, target + at_a);
-          if (two) {
-            hn::BlendedStore(packed, hn::RebindMask(du, hn::And(m, in_b_f)), du, target + at_b);
+        pass_bits =
+            hn::Or(pass_bits, hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
+      }
+    } else if constexpr (kCount) {
+      st.passed += static_cast<uint32_t>(hn::CountTrue(di, cov_any));
+    }
+
+    if constexpr (kColor == ColorMode::kRGBA8) {
+      const auto any = kMulti ? hn::RebindMask(df, hn::Ne(pass_bits, hn::Zero(du))) : pass_one;
+      if (hn::AllFalse(df, any)) continue;
+      if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(df, any));
+      const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
+      const float fdx_b = static_cast<float>(dx + 8.0);
+      const auto plane = [&](float base, float gx, float gy, float& a_base, float& b_base) {
+        a_base = base + (gx * fdx + gy * fdy);
+        b_base = base + (gx * fdx_b + gy * fdy);
+        return hn::Add(bases(a_base, b_base),
+                       hn::Add(hn::Mul(fx, hn::Set(df, gx)), hn::Mul(fy, hn::Set(df, gy))));
+      };
+      float qa_a[4], qa_b[4];
+      auto red = plane(t.qa0[0], t.qa_dx[0], t.qa_dy[0], qa_a[0], qa_b[0]);
+      auto green = plane(t.qa0[1], t.qa_dx[1], t.qa_dy[1], qa_a[1], qa_b[1]);
+      auto blue = plane(t.qa0[2], t.qa_dx[2], t.qa_dy[2], qa_a[2], qa_b[2]);
+      auto alpha = plane(t.qa0[3], t.qa_dx[3], t.qa_dy[3], qa_a[3], qa_b[3]);
+      if (!t.flat_q) {
+        float q_a, q_b;
+        const auto q = plane(t.q0, t.q_dx, t.q_dy, q_a, q_b);
+        const auto inv_q = hn::Div(hn::Set(df, 1.0f), q);
+        red = hn::Mul(red, inv_q);
+        green = hn::Mul(green, inv_q);
+        blue = hn::Mul(blue, inv_q);
+        alpha = hn::Mul(alpha, inv_q);
+        const auto beyond = hn::AndNot(hn::Gt(q, hn::Zero(df)), any);
+        if (!hn::AllFalse(df, beyond)) {
+          // The pixel centre lies beyond the triangle's horizon: evaluate at the pixel's
+          // first passing sample instead, as raster_block does, in the same order.
+          alignas(64) float channel[4][64];
+          alignas(64) float lane_fx[64], lane_fy[64];
+          alignas(64) int32_t lane_a[64], lane_beyond[64];
+          alignas(64) uint32_t passing[64];
+          store_channels(df, red, green, blue, alpha, channel);
+          hn::Store(fx, df, lane_fx);
+          hn::Store(fy, df, lane_fy);
+          hn::Store(hn::VecFromMask(di, in_a), di, lane_a);
+          hn::Store(hn::VecFromMask(di, hn::RebindMask(di, beyond)), di, lane_beyond);
+          hn::Store(pass_bits, du, passing);
+          for (size_t l = 0; l < hn::Lanes(df); ++l) {
+            if (lane_beyond[l] == 0) continue;
+            const uint32_t s = kMulti ? static_cast<uint32_t>(std::countr_zero(passing[l])) : 0;
+            const bool a = lane_a[l] != 0 || !two;
+            const float sx = lane_fx[l] + tc.sample_fx[s], sy = lane_fy[l] + tc.sample_fy[s];
+            const float qs = (a ? q_a : q_b) + (t.q_dx * sx + t.q_dy * sy);
+            for (int c = 0; c < 4; ++c) {
+              channel[c][l] = ((a ? qa_a[c] : qa_b[c]) + (t.qa_dx[c] * sx + t.qa_dy[c] * sy)) / qs;
+            }
           }
+          load_channels(df, channel, red, green, blue, alpha);
+        }
+      }
+      const auto packed = hn::Or(
+          hn::Or(to_unorm8(df, red), hn::ShiftLeft<8>(to_unorm8(df, green))),
+          hn::Or(hn::ShiftLeft<16>(to_unorm8(df, blue)), hn::ShiftLeft<24>(to_unorm8(df, alpha))));
+      uint32_t* const colour = reinterpret_cast<uint32_t*>(tc.rgba8);
+      for (uint32_t s = 0; s < samples; ++s) {
+        const auto m =
+            kMulti ? hn::RebindMask(df, hn::TestBit(pass_bits, hn::Set(du, 1u << s))) : any;
+        uint32_t* const target = colour + s * kSamplePlane;
+        hn::BlendedStore(packed, hn::RebindMask(du, hn::And(m, in_a_f)), du, target + at_a);
+        if (two) {
+          hn::BlendedStore(packed, hn::RebindMask(du, hn::And(m, in_b_f)), du, target + at_b);
         }
       }
     }
