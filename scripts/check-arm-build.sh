@@ -14,10 +14,11 @@ trap 'rm -rf "$out"' EXIT
 # Every library source but the two that include OpenImageIO and Assimp headers, whose
 # Debian packages ship per-architecture configuration.
 sources=$(find engine/src simd binning -name '*.cpp' ! -name image_io.cpp ! -name mesh_io.cpp | sort)
-for f in $sources; do
-  "$cxx" -std=c++20 -O1 -ffp-contract=off -Wall -Wextra -Wpedantic -Wshadow -Wconversion \
-    -Wno-sign-conversion -Werror -I. -Iengine/include -c "$f" -o "$out/$(basename "$f").o"
-done
+# One compiler per core: each source is independent.
+export cxx out
+echo "$sources" | xargs -P "$(nproc)" -I{} sh -c '"$cxx" -std=c++20 -O1 -ffp-contract=off \
+  -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion -Werror -I. \
+  -Iengine/include -c "$1" -o "$out/$(basename "$1").o"' sh {}
 kernels=$(nm -C "$out/block_kernel.cpp.o" | grep -oE 'N_[A-Z0-9_]+::GetKernelTable' | sort -u |
   tr '\n' ' ')
 echo "check-arm-build: $(echo "$sources" | wc -l) sources compiled for aarch64; kernels: $kernels"
