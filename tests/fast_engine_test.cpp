@@ -408,6 +408,81 @@ TEST(FastEngine, TinyTrianglesMatchReferenceInEveryDrawState) {
   }
 }
 
+TEST(FastEngine, EveryCompareOpMatchesTheReferenceOnTinyAndSmallTriangles) {
+  // The paths that specialise their depth test for kLess (pixel and sample records, the
+  // window path of boxes up to 8 pixels wide) and their general form for every other op. A
+  // first draw lays down depth under kAlways; a second tests against it under the op. Every
+  // triangle's depth is flat and one of seven values, so the two engines compare the same
+  // floats and ties (kEqual, kLessEqual, kGreaterEqual) occur; each sample's final depth and
+  // the counts of passing samples must be the reference's exactly.
+  const auto flat_depths = [](Scene s, uint32_t seed) {
+    std::mt19937 rng(seed);
+    for (size_t v = 0; v < s.positions.size(); v += 3) {
+      const float z = static_cast<float>(rng() % 7 + 1) / 8.0f;
+      for (size_t k = 0; k < 3; ++k)
+        s.positions[v + k].z = z;  // w is 1
+    }
+    return s;
+  };
+  const auto draw_two = [](const Scene& first, const Scene& second, Backend backend,
+                           const Config& config) {
+    RendererOptions options;
+    options.backend = backend;
+    options.threads = config.threads;
+    options.simd = config.target;
+    Renderer renderer(options);
+    Framebuffer fb({second.width, second.height, second.samples, second.format});
+    fb.clear_color({0.1f, 0.2f, 0.3f, 1.0f});
+    fb.clear_depth(0.5f);
+    const auto draw = [&](const Scene& scene) {
+      renderer.draw(fb, scene.pipeline, {scene.positions, scene.colors, 4, {}});
+    };
+    draw(first);
+    const uint64_t passed_before = renderer.counters().samples_passed;
+    draw(second);
+    Result r;
+    r.rgba8 = fb.read_rgba8();
+    r.depth = fb.read_sample_depth();
+    r.counters = renderer.counters();
+    r.counters.samples_passed -= passed_before;
+    return r;
+  };
+  const CompareOp ops[] = {CompareOp::kLess,         CompareOp::kLessEqual, CompareOp::kGreater,
+                           CompareOp::kGreaterEqual, CompareOp::kEqual,     CompareOp::kNotEqual,
+                           CompareOp::kNever,        CompareOp::kAlways};
+  for (float area : {1.5f, 12.0f}) {
+    for (uint32_t samples : {1u, 2u, 4u}) {
+      Scene first = flat_depths(soup(660, 1500, area, false), 661);
+      first.samples = samples;
+      first.pipeline.depth_compare = CompareOp::kAlways;
+      for (CompareOp op : ops) {
+        SCOPED_TRACE(testing::Message() << "area " << area << ", " << samples << " samples, op "
+                                        << static_cast<int>(op));
+        Scene second = flat_depths(soup(662, 1500, area, false), 663);
+        second.samples = samples;
+        second.pipeline.depth_compare = op;
+        const Result ref = draw_two(first, second, Backend::kReference, {SimdTarget::kAuto, 1});
+        if (op == CompareOp::kNever) {
+          ASSERT_EQ(ref.counters.samples_passed, 0u);
+        } else {
+          ASSERT_GT(ref.counters.samples_passed, 100u * samples);  // kEqual's ties are the fewest
+        }
+        for_each_config([&](const Config& config) {
+          const Result fast = draw_two(first, second, Backend::kFast, config);
+          EXPECT_EQ(fast.counters.samples_covered, ref.counters.samples_covered);
+          EXPECT_EQ(fast.counters.samples_passed, ref.counters.samples_passed);
+          ASSERT_EQ(fast.depth.size(), ref.depth.size());
+          EXPECT_EQ(0, std::memcmp(fast.depth.data(), ref.depth.data(),
+                                   ref.depth.size() * sizeof(float)));
+          for (size_t i = 0; i < ref.rgba8.size(); ++i) {
+            ASSERT_LE(std::abs(int{fast.rgba8[i]} - int{ref.rgba8[i]}), 1) << "byte " << i;
+          }
+        });
+      }
+    }
+  }
+}
+
 TEST(FastEngine, TinyTriangleRecordsDrawTheSameBytesAsTheFullSetups) {
   // Pixel records (one sample) and sample records (two and four) against full setups for
   // every triangle (RendererOptions::tiny_triangle_records off): the same depth bits, colour

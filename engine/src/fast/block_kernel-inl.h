@@ -97,6 +97,39 @@ HWY_INLINE auto depth_passes(D d, CompareOp op, V incoming, V stored) {
   return all_lanes(d);
 }
 
+// The depth test of a loop compiled for one compare op: LessCompare for CompareOp::kLess, the
+// default, whose loop then holds no switch over the op (the window path at four samples: small
+// about 0.93x the time, benchmarks/RESULTS.md); AnyCompare for the others.
+struct LessCompare {
+  template <class D, class V>
+  HWY_INLINE auto operator()(D, V incoming, V stored) const {
+    return hn::Lt(incoming, stored);
+  }
+  HWY_INLINE bool operator()(float incoming, float stored) const { return incoming < stored; }
+};
+struct AnyCompare {
+  CompareOp op;
+  template <class D, class V>
+  HWY_INLINE auto operator()(D d, V incoming, V stored) const {
+    return depth_passes(d, op, incoming, stored);
+  }
+  HWY_INLINE bool operator()(float incoming, float stored) const {
+    return detail::depth_passes(op, incoming, stored);
+  }
+};
+
+// Calls body(LessCompare) when the draw tests depth with kLess, else body(AnyCompare).
+template <DepthMode kDepth, class Body>
+HWY_INLINE void with_compare(const TileContext& tc, Body&& body) {
+  if constexpr (kDepth != DepthMode::kOff) {
+    if (tc.compare == CompareOp::kLess) {
+      body(LessCompare{});
+      return;
+    }
+  }
+  body(AnyCompare{tc.compare});
+}
+
 // base + (gx * x + gy * y) at the lanes' pixels.
 template <class DF, class VF>
 HWY_INLINE VF plane_at(DF df, VF fx, VF fy, float base, float gx, float gy) {
@@ -908,8 +941,9 @@ HWY_NOINLINE void raster_small_hiz(const TileContext& tc, const TriangleSetup& t
 // values are raster_block's for its pixel and sample (its own block's plane bases, then the offsets
 // to the sample in that block), and the counters are raster_small's, so the bytes and counts are
 // the same. Targets with 8 or 16 lanes.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
-HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class Compare>
+HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Counters& counters,
+                              [[maybe_unused]] Compare compare) {
   static_assert(kColor != ColorMode::kRGBA32F, "windows write RGBA8 colour");
   const hn::ScalableTag<int32_t> di;
   const hn::ScalableTag<uint32_t> du;
@@ -947,7 +981,6 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   int32_t e_row[3];
   for (int e = 0; e < 3; ++e)
     e_row[e] = static_cast<int32_t>(t.a[e] * ox + t.b[e] * oy + t.c[e]);
-  const CompareOp compare = tc.compare;
   const float depth_scale = tc.depth_scale;
   // The windows' blocks: a, and b to its right when some lane of the box lies there; their
   // first pixels' offsets from the plane origin in x.
@@ -1007,7 +1040,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
         float* const plane = tc.depth + s * kSamplePlane;
         auto stored = hn::MaskedLoad(in_a_f, df, plane + at_a);
         if (two) stored = hn::IfThenElse(in_a_f, stored, hn::MaskedLoad(in_b_f, df, plane + at_b));
-        pass = hn::And(pass, depth_passes(df, compare, z, stored));
+        pass = hn::And(pass, compare(df, z, stored));
         if constexpr (kDepth == DepthMode::kTestWrite) {
           hn::BlendedStore(z, hn::And(pass, in_a_f), df, plane + at_a);
           if (two) hn::BlendedStore(z, hn::And(pass, in_b_f), df, plane + at_b);
@@ -1187,11 +1220,12 @@ struct PixelSite {
 // Whether a depth value passes against the stored one (and is written with kTestWrite, its
 // block's Hi-Z bounds then out of date): z clamped to [0, 1], rounded here to a fixed-point
 // format's steps as raster_block rounds its lanes.
-template <DepthMode kDepth>
-HWY_INLINE bool pixel_depth_passes(const TileContext& tc, size_t block, size_t index, float z) {
+template <DepthMode kDepth, class Compare>
+HWY_INLINE bool pixel_depth_passes(const TileContext& tc, size_t block, size_t index, float z,
+                                   Compare compare) {
   if (tc.depth_scale > 0.0f) z = std::nearbyint(z * tc.depth_scale);
   float& stored = tc.depth[index];
-  if (!detail::depth_passes(tc.compare, z, stored)) return false;
+  if (!compare(z, stored)) return false;
   if constexpr (kDepth == DepthMode::kTestWrite) {
     stored = z;
     mark_hiz_dirty(tc, block);
@@ -1260,7 +1294,8 @@ HWY_INLINE void raster_centres(const TileContext& tc, const TriangleSetup& t, ui
       blocks |= site.block_bit;
     }
     if constexpr (kDepth != DepthMode::kOff) {
-      if (!pixel_depth_passes<kDepth>(tc, site.block, site.index, centre_depth(t, offsets))) {
+      if (!pixel_depth_passes<kDepth>(tc, site.block, site.index, centre_depth(t, offsets),
+                                      AnyCompare{tc.compare})) {
         continue;
       }
     }
@@ -1279,8 +1314,9 @@ HWY_INLINE void raster_centres(const TileContext& tc, const TriangleSetup& t, ui
 
 // A pixel record (pixel_record.hpp): its pixels in this tile, depth-tested and written with
 // the values the setup computed for them, which are raster_centres' for the same pixels.
-template <DepthMode kDepth, ColorMode kColor, bool kCount>
-void RasterPixels(const TileContext& tc, const PixelRecord& r, Counters& counters) {
+template <DepthMode kDepth, ColorMode kColor, bool kCount, class Compare>
+HWY_INLINE void raster_pixel_record(const TileContext& tc, const PixelRecord& r, Counters& counters,
+                                    [[maybe_unused]] Compare compare) {
   static_assert(kColor != ColorMode::kRGBA32F, "pixel records hold RGBA8 colour");
   const int32_t x0 = r.x0, y0 = r.y0;
   const uint32_t n = r.shape & 3u;
@@ -1294,7 +1330,7 @@ void RasterPixels(const TileContext& tc, const PixelRecord& r, Counters& counter
       blocks |= site.block_bit;
     }
     if constexpr (kDepth != DepthMode::kOff) {
-      if (!pixel_depth_passes<kDepth>(tc, site.block, site.index, r.z[i])) continue;
+      if (!pixel_depth_passes<kDepth>(tc, site.block, site.index, r.z[i], compare)) continue;
     }
     if constexpr (kCount) ++passed;
     if constexpr (kColor == ColorMode::kRGBA8) {
@@ -1312,9 +1348,10 @@ void RasterPixels(const TileContext& tc, const PixelRecord& r, Counters& counter
 // Each sample's depth is raster_block's sum for its lane: the plane's base at the block's
 // first pixel (z_base), plus the sample's offset (set_up_state's), plus the pixel's offset in
 // the block, clamped and rounded as the lanes are.
-template <DepthMode kDepth>
+template <DepthMode kDepth, class Compare>
 HWY_INLINE uint32_t samples_depth_pass(const TileContext& tc, size_t block, size_t index,
-                                       uint32_t cov, float z_base, float z_dx, float z_dy) {
+                                       uint32_t cov, float z_base, float z_dx, float z_dy,
+                                       Compare compare) {
   const float fx = static_cast<float>(index & 7), fy = static_cast<float>((index >> 3) & 7);
   const float z_rel = fx * z_dx + fy * z_dy;
   uint32_t pass = 0;
@@ -1325,7 +1362,7 @@ HWY_INLINE uint32_t samples_depth_pass(const TileContext& tc, size_t block, size
     z = z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;  // hn::Min(hn::Max(z, 0), 1)
     if (tc.depth_scale > 0.0f) z = std::nearbyint(z * tc.depth_scale);
     float& stored = tc.depth[s * kSamplePlane + index];
-    const bool passes = detail::depth_passes(tc.compare, z, stored);
+    const bool passes = compare(z, stored);
     pass |= passes ? 1u << s : 0u;
     if constexpr (kDepth == DepthMode::kTestWrite) stored = passes ? z : stored;
   }
@@ -1362,7 +1399,8 @@ HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Co
     uint32_t pass = cov;
     if constexpr (kDepth != DepthMode::kOff) {
       const float z_base = static_cast<float>(t.z0 + t.z_dx * offsets.dx + t.z_dy * offsets.dy);
-      pass = samples_depth_pass<kDepth>(tc, block, index, cov, z_base, t.z_dx, t.z_dy);
+      pass = samples_depth_pass<kDepth>(tc, block, index, cov, z_base, t.z_dx, t.z_dy,
+                                        AnyCompare{tc.compare});
       if (pass == 0) continue;
     }
     if constexpr (kCount) passed += static_cast<uint32_t>(std::popcount(pass));
@@ -1382,8 +1420,9 @@ HWY_INLINE void raster_samples(const TileContext& tc, const TriangleSetup& t, Co
 // A sample record (pixel_record.hpp): its pixels in this tile, each covered sample's depth
 // tested with the value raster_samples forms for it from the same floats, and the colour the
 // setup computed written to the passing samples.
-template <DepthMode kDepth, ColorMode kColor, bool kCount>
-void RasterSamples(const TileContext& tc, const SampleRecord& r, Counters& counters) {
+template <DepthMode kDepth, ColorMode kColor, bool kCount, class Compare>
+HWY_INLINE void raster_sample_record(const TileContext& tc, const SampleRecord& r,
+                                     Counters& counters, [[maybe_unused]] Compare compare) {
   static_assert(kColor != ColorMode::kRGBA32F, "sample records hold RGBA8 colour");
   const int32_t x0 = r.x0, y0 = r.y0;
   const uint32_t n = r.shape & 7u;
@@ -1401,8 +1440,8 @@ void RasterSamples(const TileContext& tc, const SampleRecord& r, Counters& count
     }
     uint32_t pass = cov;
     if constexpr (kDepth != DepthMode::kOff) {
-      pass =
-          samples_depth_pass<kDepth>(tc, site.block, site.index, cov, r.z_base[i], r.z_dx, r.z_dy);
+      pass = samples_depth_pass<kDepth>(tc, site.block, site.index, cov, r.z_base[i], r.z_dx,
+                                        r.z_dy, compare);
       if (pass == 0) continue;
     }
     if constexpr (kCount) {
@@ -1415,6 +1454,20 @@ void RasterSamples(const TileContext& tc, const SampleRecord& r, Counters& count
     count_pixels(tc, x0, y0, x0 + ((r.shape >> 3) & 3), y0 + ((r.shape >> 5) & 3), blocks, covered,
                  passed, shaded, counters);
   }
+}
+
+template <DepthMode kDepth, ColorMode kColor, bool kCount>
+void RasterPixels(const TileContext& tc, const PixelRecord& r, Counters& counters) {
+  with_compare<kDepth>(tc, [&](auto compare) {
+    raster_pixel_record<kDepth, kColor, kCount>(tc, r, counters, compare);
+  });
+}
+
+template <DepthMode kDepth, ColorMode kColor, bool kCount>
+void RasterSamples(const TileContext& tc, const SampleRecord& r, Counters& counters) {
+  with_compare<kDepth>(tc, [&](auto compare) {
+    raster_sample_record<kDepth, kColor, kCount>(tc, r, counters, compare);
+  });
 }
 
 // One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
@@ -1438,7 +1491,9 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
     if constexpr (kColor != ColorMode::kRGBA32F) {
       const size_t lanes = hn::Lanes(hn::ScalableTag<int32_t>());
       if ((lanes == 8 || lanes == 16) && t.x1 - t.x0 < kWindowBox) {
-        raster_window<kDepth, kColor, kMulti, kCount>(tc, t, counters);
+        with_compare<kDepth>(tc, [&](auto compare) {
+          raster_window<kDepth, kColor, kMulti, kCount>(tc, t, counters, compare);
+        });
         return;
       }
     }
