@@ -3,6 +3,15 @@
 find_package(glm CONFIG REQUIRED)
 find_package(TBB CONFIG REQUIRED)
 find_package(hwy CONFIG REQUIRED)
+# Highway targets left out of this build: an expression of HWY_* bits such as
+# "HWY_AVX2|HWY_SSE4". Every translation unit sees the same HWY_TARGETS, so the dispatch tables
+# and the per-target kernels agree, and a target left out is reported as not available. The
+# sanitizer preset uses it: the kernels' compile time grows with the number of targets, and the
+# sanitizers multiply it.
+set(TESSERA_HWY_DISABLED_TARGETS "" CACHE STRING "Highway targets not to compile (HWY_* bits)")
+if(TESSERA_HWY_DISABLED_TARGETS)
+  add_compile_definitions("HWY_DISABLED_TARGETS=(${TESSERA_HWY_DISABLED_TARGETS})")
+endif()
 find_package(assimp CONFIG REQUIRED)
 find_package(OpenImageIO CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
