@@ -1027,8 +1027,9 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       const float zb = static_cast<float>(t.z0 + t.z_dx * (dx + 8.0) + t.z_dy * dy);
       const auto z_rel =
           hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
-      // A sample plane's stored values at the lanes' pixels.
-      const auto load_plane = [&](const float* plane) {
+      // Sample s's stored values at the lanes' pixels.
+      const auto load_plane = [&](uint32_t s) {
+        const float* const plane = tc.depth + s * kSamplePlane;
         auto v = hn::MaskedLoad(in_a_f, df, plane + at_a);
         return two ? hn::IfThenElse(in_a_f, v, hn::MaskedLoad(in_b_f, df, plane + at_b)) : v;
       };
@@ -1058,23 +1059,21 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       };
       // At two and four samples every plane is loaded before the first store: the planes lie
       // 16 KB apart, so a load from plane s + 1 issued after the store to plane s at the same
-      // offset matches it in the low 12 address bits (4K aliasing). Measured on small at four
-      // samples: about 0.95x the time (benchmarks/RESULTS.md).
+      // offset matches it in the low 12 address bits (4K aliasing). Measured on small: about
+      // 0.88x the time at four samples, 0.95x at two (benchmarks/RESULTS.md).
       if (kMulti && samples == 2) {
-        const auto v0 = load_plane(tc.depth), v1 = load_plane(tc.depth + kSamplePlane);
+        const auto v0 = load_plane(0), v1 = load_plane(1);
         test_sample(0, v0);
         test_sample(1, v1);
       } else if (kMulti && samples == 4) {
-        const auto v0 = load_plane(tc.depth), v1 = load_plane(tc.depth + kSamplePlane);
-        const auto v2 = load_plane(tc.depth + 2 * kSamplePlane);
-        const auto v3 = load_plane(tc.depth + 3 * kSamplePlane);
+        const auto v0 = load_plane(0), v1 = load_plane(1), v2 = load_plane(2), v3 = load_plane(3);
         test_sample(0, v0);
         test_sample(1, v1);
         test_sample(2, v2);
         test_sample(3, v3);
       } else {
         for (uint32_t s = 0; s < samples; ++s)
-          test_sample(s, load_plane(tc.depth + s * kSamplePlane));
+          test_sample(s, load_plane(s));
       }
       if constexpr (kDepth == DepthMode::kTestWrite) {
         // The blocks with a sample written (any passing sample was).
