@@ -2,7 +2,6 @@
 #include "engine/src/draw_validation.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -13,6 +12,7 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
+#include "engine/src/finite_scan.hpp"
 #include "tessera/error.hpp"
 
 namespace tessera {
@@ -35,11 +35,6 @@ std::string describe(const Float4& p) {
   std::ostringstream s;
   s << "(" << p.x << ", " << p.y << ", " << p.z << ", " << p.w << ")";
   return s.str();
-}
-
-// 1 when a value is an infinity or a NaN (all exponent bits set marks both), else 0.
-uint32_t non_finite(float value) {
-  return (std::bit_cast<uint32_t>(value) & 0x7f800000u) == 0x7f800000u ? 1u : 0u;
 }
 
 // `scan` (begin, end) -> uint32_t over [0, n), its results combined by `|` or max (`combine`):
@@ -67,26 +62,16 @@ bool all_finite(std::span<const float> values, tbb::task_arena* arena = nullptr)
   return reduce(
              arena, values.size(),
              [&](size_t begin, size_t end) {
-               uint32_t found = 0;
-               for (size_t i = begin; i < end; ++i)
-                 found |= non_finite(values[i]);
-               return found;
+               return values_finite(values.data() + begin, end - begin) ? 0u : 1u;
              },
              either) == 0;
 }
 
 bool all_finite(std::span<const Float4> positions, tbb::task_arena* arena = nullptr) {
-  return reduce(
-             arena, positions.size(),
-             [&](size_t begin, size_t end) {
-               uint32_t found = 0;
-               for (size_t i = begin; i < end; ++i) {
-                 const Float4& p = positions[i];
-                 found |= non_finite(p.x) | non_finite(p.y) | non_finite(p.z) | non_finite(p.w);
-               }
-               return found;
-             },
-             either) == 0;
+  // A Float4 is four floats, without padding: the array is scanned as one array of floats.
+  static_assert(sizeof(Float4) == 4 * sizeof(float));
+  if (positions.empty()) return true;
+  return all_finite(std::span<const float>(&positions.data()->x, positions.size() * 4), arena);
 }
 
 }  // namespace
