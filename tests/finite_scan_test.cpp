@@ -1,7 +1,7 @@
 // The scan validation runs over vertex arrays for NaN and infinity (engine/src/finite_scan.hpp),
 // on every SIMD target this machine runs: every kind of non-finite value is found at every
-// place of arrays whose lengths cover the vector loops, their unrolled part and the scalar
-// tail, and the largest finite values, denormals and -0 pass.
+// place of arrays whose lengths cover the vector loop and the scalar tail, and the largest
+// finite values, denormals and -0 pass.
 #include <gtest/gtest.h>
 
 #include <bit>
