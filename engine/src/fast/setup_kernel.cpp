@@ -75,6 +75,18 @@ HWY_INLINE V round_to_int(D d, V v) {
   return hn::Sub(hn::Add(v, magic), magic);
 }
 
+// An integer-valued double lane that fits int32, as int64 (exact). AVX-512 converts doubles to
+// int64 in one instruction; x86 targets below it have no such instruction (Highway emulates it
+// in about thirty), so they convert through int32 instead.
+template <class D64, class V>
+HWY_INLINE hn::Vec<D64> small_to_int64(D64 d64, V v) {
+#if HWY_ARCH_X86 && HWY_TARGET > HWY_AVX3
+  return hn::PromoteTo(d64, hn::DemoteTo(hn::Rebind<int32_t, D64>(), v));
+#else
+  return hn::ConvertTo(d64, v);
+#endif
+}
+
 // A mask's lanes as bits (at most 32 lanes: kMaxLanes).
 template <class D, class M>
 HWY_INLINE uint32_t mask_bits(D d, M m) {
@@ -311,10 +323,9 @@ HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU mask, VU last, uint32_
 // kUnitW: every vertex has w = 1 (orthographic and 2D draws), so the divisions by w are
 // skipped: x / 1 is x exactly, and the results are the same bits.
 template <bool kUnitW, class VF>
-HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const VF (&pos)[3][4],
-                               size_t l0, Out& out) {
+HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
+                               const VF (&color)[3][4], size_t l0, Out& out) {
   const hn::ScalableTag<double> d;
-  const hn::Rebind<float, decltype(d)> df;  // the input floats, as many lanes
   using V = hn::Vec<decltype(d)>;
   const PipelineState& p = *ctx.pipeline;
   const bool gl_depth = p.clip_depth == ClipDepth::kNegativeOneToOne;
@@ -361,12 +372,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   // Orient clockwise on screen: swap vertices 1 and 2 where the area is negative.
   V C[3][4];
   for (int k = 0; k < 3; ++k) {
-    hn::Vec<decltype(df)> r, g, b, a;
-    hn::LoadInterleaved4(df, &in.color[k][l0][0], r, g, b, a);
-    C[k][0] = hn::PromoteTo(d, r);
-    C[k][1] = hn::PromoteTo(d, g);
-    C[k][2] = hn::PromoteTo(d, b);
-    C[k][3] = hn::PromoteTo(d, a);
+    for (int c = 0; c < 4; ++c)
+      C[k][c] = hn::PromoteTo(d, color[k][c]);
   }
   {
     const V x1 = X[1], y1 = Y[1], z1 = Z[1], w1 = IW[1];
@@ -413,7 +420,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
     const hn::RebindToSigned<decltype(d)> dt;
     const int log2 = static_cast<int>(ctx.bin_tile_log2);
     const auto tile_of = [&](V v) {
-      return hn::ShiftRightSame(hn::ConvertTo(dt, hn::IfThenElseZero(keep, v)), log2);
+      return hn::ShiftRightSame(small_to_int64(dt, hn::IfThenElseZero(keep, v)), log2);
     };
     const auto tiles =
         hn::Or(hn::Or(tile_of(bx0), hn::ShiftLeft<16>(tile_of(by0))),
@@ -538,7 +545,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
         ds;
     const hn::RebindToUnsigned<decltype(ds)> dus;
     using VS = hn::Vec<decltype(ds)>;
-    const auto as_int = [&](V v) { return hn::ConvertTo(d64, hn::IfThenElseZero(box, v)); };
+    const auto as_int = [&](V v) { return small_to_int64(d64, hn::IfThenElseZero(box, v)); };
     const auto pair = [&](auto lo, auto hi) {
       if constexpr (kPerLane == 1) {
         (void)hi;
@@ -748,24 +755,69 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const Batch& in, const V
   if (!hn::AllFalse(d, full)) PackLanes(d, l0, out);
 }
 
-void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
+// One vector of lanes from l0, from its vertices' positions and colours as x, y, z, w and
+// r, g, b, a vectors.
+template <class VF>
+HWY_INLINE void SetupVertices(const SetupContext& ctx, const VF (&pos)[3][4],
+                              const VF (&color)[3][4], size_t l0, Out& out) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<float, decltype(d)> df;
   const auto one = hn::Set(df, 1.0f);
+  auto unit_w = hn::Eq(one, one);
+  for (int k = 0; k < 3; ++k)
+    unit_w = hn::And(unit_w, hn::Eq(pos[k][3], one));
+  if (hn::AllTrue(df, unit_w)) {
+    SetupLaneGroup<true>(ctx, pos, color, l0, out);
+  } else {
+    SetupLaneGroup<false>(ctx, pos, color, l0, out);
+  }
+}
+
+void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
+  const hn::ScalableTag<double> d;
+  const hn::Rebind<float, decltype(d)> df;
   out.clipped = out.kept = out.binned = out.pixel = 0;
   for (size_t l0 = 0; l0 < lanes_used; l0 += hn::Lanes(d)) {
-    hn::Vec<decltype(df)> pos[3][4];  // x, y, z, w of each vertex
-    auto unit_w = hn::Eq(one, one);
+    hn::Vec<decltype(df)> pos[3][4], color[3][4];  // x, y, z, w and r, g, b, a of each vertex
     for (int k = 0; k < 3; ++k) {
       hn::LoadInterleaved4(df, &in.position[k][l0].x, pos[k][0], pos[k][1], pos[k][2], pos[k][3]);
-      unit_w = hn::And(unit_w, hn::Eq(pos[k][3], one));
+      hn::LoadInterleaved4(df, &in.color[k][l0][0], color[k][0], color[k][1], color[k][2],
+                           color[k][3]);
     }
-    if (hn::AllTrue(df, unit_w)) {
-      SetupLaneGroup<true>(ctx, in, pos, l0, out);
-    } else {
-      SetupLaneGroup<false>(ctx, in, pos, l0, out);
-    }
+    SetupVertices(ctx, pos, color, l0, out);
   }
+}
+
+// One vector's worth of a triangle list's vertex values, four floats per vertex and three
+// vertices per triangle in order (Lanes(df) triangles: 12 * Lanes(df) floats from `from`), as
+// value[vertex][component] vectors whose lane l is triangle l's: each component is first
+// gathered from the four interleaved, then the vertices from the three.
+template <class DF>
+HWY_INLINE void LoadTriangleValues(DF df, const float* HWY_RESTRICT from,
+                                   hn::Vec<DF> (&value)[3][4]) {
+  const size_t n = hn::Lanes(df);
+  HWY_ALIGN float component[4][3 * kMaxLanes];
+  for (size_t j = 0; j < 3; ++j) {
+    hn::Vec<DF> v[4];
+    hn::LoadInterleaved4(df, from + 4 * n * j, v[0], v[1], v[2], v[3]);
+    for (int c = 0; c < 4; ++c)
+      hn::StoreU(v[c], df, component[c] + n * j);
+  }
+  for (int c = 0; c < 4; ++c)
+    hn::LoadInterleaved3(df, component[c], value[0][c], value[1][c], value[2][c]);
+}
+
+// SetupBatchLanes for Lanes(d) triangles of a list without indices, whose vertices have four
+// colour values each: read from the draw's arrays directly, with no Batch copy.
+void SetupListLanes(const SetupContext& ctx, const float* positions, const float* colors,
+                    Out& out) {
+  const hn::ScalableTag<double> d;
+  const hn::Rebind<float, decltype(d)> df;
+  out.clipped = out.kept = out.binned = out.pixel = 0;
+  hn::Vec<decltype(df)> pos[3][4], color[3][4];
+  LoadTriangleValues(df, positions, pos);
+  LoadTriangleValues(df, colors, color);
+  SetupVertices(ctx, pos, color, 0, out);
 }
 
 }  // namespace
@@ -782,6 +834,38 @@ HWY_INLINE bool batch_finite(const Batch& batch, size_t lanes) {
     }
   }
   return hn::AllTrue(df, finite);
+}
+
+// Whether `count` floats from `from` are all finite (count: a multiple of the float lanes).
+HWY_INLINE bool range_finite(const float* from, size_t count) {
+  const hn::ScalableTag<float> df;
+  auto finite = hn::FirstN(df, hn::Lanes(df));
+  for (size_t i = 0; i < count; i += hn::Lanes(df))
+    finite = hn::And(finite, hn::IsFinite(hn::LoadU(df, from + i)));
+  return hn::AllTrue(df, finite);
+}
+
+// Copies triangles [t, t + used) of the draw into the batch's first lanes (of `lanes`); spare
+// lanes repeat the last triangle.
+HWY_INLINE void fill_batch(const DrawInput& input, size_t t, size_t used, size_t lanes,
+                           Batch& batch) {
+  const bool indexed = !input.indices.empty();
+  const uint32_t count = input.attribute_count;
+  for (size_t l = 0; l < lanes; ++l) {
+    const size_t tri = t + std::min(l, used - 1);
+    for (int k = 0; k < 3; ++k) {
+      const size_t vertex = indexed ? input.indices[tri * 3 + k] : tri * 3 + k;
+      batch.position[k][l] = input.positions[vertex];
+      const float* a = count ? &input.attributes[vertex * count] : nullptr;
+      if (count >= 4) {  // every channel given, no per-channel choice
+        std::memcpy(batch.color[k][l], a, sizeof(batch.color[k][l]));
+      } else {
+        float* c = batch.color[k][l];
+        for (uint32_t i = 0; i < 4; ++i)
+          c[i] = i < count ? a[i] : (i == 3 ? 1.0f : 0.0f);
+      }
+    }
+  }
 }
 
 // The bin tiles of a bounding box's pixels x0..x1, y0..y1 (on screen: not negative).
@@ -812,28 +896,29 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
   Batch batch;
   Out out;
   bool ok = true;
+  // A list without indices and with the four colour values per vertex (captures, most meshes
+  // drawn as lists) is read in place a full vector of triangles at a time.
+  const bool in_place = !indexed && count == 4;
   for (size_t t = begin; t < end; t += lanes) {
     const size_t used = std::min(lanes, end - t);
-    for (size_t l = 0; l < lanes; ++l) {
-      const size_t tri = t + std::min(l, used - 1);  // spare lanes repeat the last triangle
-      for (int k = 0; k < 3; ++k) {
-        const size_t vertex = indexed ? input.indices[tri * 3 + k] : tri * 3 + k;
-        batch.position[k][l] = input.positions[vertex];
-        const float* a = count ? &input.attributes[vertex * count] : nullptr;
-        if (count >= 4) {  // the usual case: every channel given, no per-channel choice
-          std::memcpy(batch.color[k][l], a, sizeof(batch.color[k][l]));
-        } else {
-          float* c = batch.color[k][l];
-          for (uint32_t i = 0; i < 4; ++i)
-            c[i] = i < count ? a[i] : (i == 3 ? 1.0f : 0.0f);
-        }
+    if (in_place && used == lanes) {
+      const float* positions = &input.positions[t * 3].x;
+      const float* colors = &input.attributes[t * 12];
+      if (ctx.check_finite &&
+          !(range_finite(positions, 12 * lanes) && range_finite(colors, 12 * lanes))) {
+        ok = false;
+        break;
       }
+      SetupListLanes(ctx, positions, colors, out);
+    } else {
+      fill_batch(input, t, used, lanes, batch);
+      if (ctx.check_finite && !batch_finite(batch, lanes)) {
+        ok = false;
+        break;
+      }
+      SetupBatchLanes(ctx, batch, lanes, out);
     }
-    if (ctx.check_finite && !batch_finite(batch, lanes)) {
-      ok = false;
-      break;
-    }
-    SetupBatchLanes(ctx, batch, lanes, out);
+
     // Room for every lane's record (uninitialized: SetupList's allocator); `next` is the first
     // not written, and the list is cut to it after the lanes.
     size_t next = setups.size();
