@@ -351,23 +351,21 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
   const double scale = static_cast<double>(1u << bits);
   const auto zero = hn::Zero(d);
   V X[3], Y[3], Z[3], IW[3];
-  auto inside = hn::Eq(zero, zero);
+  V nearest = zero;  // the least clip distance over the vertices
   for (int k = 0; k < 3; ++k) {
     const VF &px = pos[k][0], &py = pos[k][1], &pz = pos[k][2], &pw = pos[k][3];
     const V x = hn::PromoteTo(d, px), y = hn::PromoteTo(d, py), w = hn::PromoteTo(d, pw);
     // OpenGL's -w <= z <= w becomes 0 <= z <= w: z' = (z + w) / 2 (as setup_triangle).
     const V z = gl_depth ? hn::Mul(hn::Set(d, 0.5), hn::Add(hn::PromoteTo(d, pz), w))
                          : hn::PromoteTo(d, pz);
-    // The clip distances of clip.cpp, term for term.
+    // The clip distances of clip.cpp, term for term, and their least: inside every plane where
+    // it is not negative (the values are finite, so no distance is NaN). gx - |x| is the lesser
+    // of x + gx and -x + gx, with the same bits.
     const V gx = hn::Mul(hn::Set(d, ctx.guard_band.x), w);
     const V gy = hn::Mul(hn::Set(d, ctx.guard_band.y), w);
-    inside = hn::And(inside, hn::Ge(z, zero));
-    inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(z), w), zero));
-    inside = hn::And(inside, hn::Ge(hn::Add(w, hn::Set(d, -kMinClipW)), zero));
-    inside = hn::And(inside, hn::Ge(hn::Add(x, gx), zero));
-    inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(x), gx), zero));
-    inside = hn::And(inside, hn::Ge(hn::Add(y, gy), zero));
-    inside = hn::And(inside, hn::Ge(hn::Add(hn::Neg(y), gy), zero));
+    const V depth = hn::Min(hn::Min(z, hn::Sub(w, z)), hn::Add(w, hn::Set(d, -kMinClipW)));
+    const V least = hn::Min(depth, hn::Min(hn::Sub(gx, hn::Abs(x)), hn::Sub(gy, hn::Abs(y))));
+    nearest = k == 0 ? least : hn::Min(nearest, least);
     // window x = (x / w + 1) * width / 2, window y = (1 - y / w) * height / 2, snapped.
     IW[k] = kUnitW ? hn::Set(d, 1.0) : hn::Div(hn::Set(d, 1.0), w);
     const V x_w = kUnitW ? x : quotient(x, w, IW[k]), y_w = kUnitW ? y : quotient(y, w, IW[k]);
@@ -377,6 +375,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     Y[k] = round_to_int(d, hn::Mul(wy, hn::Set(d, scale)));
     Z[k] = kUnitW ? z : quotient(z, w, IW[k]);
   }
+  const auto inside = hn::Ge(nearest, zero);
   // Lanes outside a plane go to the scalar clipper; give them harmless values here.
   V area = hn::Sub(hn::Mul(hn::Sub(X[1], X[0]), hn::Sub(Y[2], Y[0])),
                    hn::Mul(hn::Sub(Y[1], Y[0]), hn::Sub(X[2], X[0])));
