@@ -916,6 +916,12 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
   // A list without indices and with the four colour values per vertex (captures, most meshes
   // drawn as lists) is read in place a full vector of triangles at a time.
   const bool in_place = !indexed && count == 4;
+  // Room for every triangle's record (uninitialized: SetupList's allocator), once for the
+  // range; `next` is the first not written, and the lists are cut to it at the end.
+  size_t next = setups.size(), next_pixel = pixels.size(), next_sample = samples.size();
+  setups.resize(next + (end - begin));
+  if (ctx.pixel_records) pixels.resize(next_pixel + (end - begin));
+  if (ctx.sample_records) samples.resize(next_sample + (end - begin));
   for (size_t t = begin; t < end; t += lanes) {
     const size_t used = std::min(lanes, end - t);
     if (in_place && used == lanes) {
@@ -936,13 +942,6 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
       SetupBatchLanes(ctx, batch, lanes, out);
     }
 
-    // Room for every lane's record (uninitialized: SetupList's allocator); `next` is the first
-    // not written, and the list is cut to it after the lanes.
-    size_t next = setups.size();
-    setups.resize(next + used);
-    size_t next_pixel = pixels.size(), next_sample = samples.size();
-    if (ctx.pixel_records) pixels.resize(next_pixel + used);
-    if (ctx.sample_records) samples.resize(next_sample + used);
     // The lanes' outcomes counted at once; then only the lanes with records are visited, in
     // order (submission order in the bins). With half of a dense mesh's tiny triangles
     // covering no pixel centre, a branch per lane on it mispredicts often.
@@ -973,7 +972,7 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
                         ctx.bin_tile_log2),
               static_cast<uint32_t>(i));
         next = setups.size();
-        setups.resize(next + used - l - 1);
+        setups.resize(next + (end - (t + l) - 1));
         continue;
       }
       const uint64_t packed = out.tiles[l];
@@ -1003,10 +1002,10 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         stream_piece(out.words[k] + 4 * l, record + 32 + 16 * k);
       bins.record(tiles, static_cast<uint32_t>(next++));
     }
-    setups.resize(next);
-    pixels.resize(next_pixel);
-    samples.resize(next_sample);
   }
+  setups.resize(next);
+  pixels.resize(next_pixel);
+  samples.resize(next_sample);
   hwy::FlushStream();
   return ok;
 }
