@@ -326,7 +326,9 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
           throw Error(ErrorCode::kInvalidInput, "a vertex value is not finite");
         }
       }
+      // Every value is checked now: the later passes' setups need not check theirs again.
       check_finite = false;
+      ctx.check_finite = false;
     }
     const size_t kept = last + 1;
     std::vector<ChunkView> views(kept);
