@@ -987,6 +987,11 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   const int32_t window_bx = px0 >> 3;
   const bool two = first_col != 0 && (window_bx + 1) * 8 <= px1;
   const double dx = window_bx * 8.0 - t.x0;
+  // The planes' bases at the windows' blocks depend only on the block row: formed when a window
+  // of a new block row first needs them, and kept for the next windows of that row.
+  int32_t z_row = -1, colour_row = -1;  // the block row whose bases are held (none: -1)
+  float za = 0.0f, zb = 0.0f;
+  float qa_a[4] = {}, qa_b[4] = {}, q_a = 0.0f, q_b = 0.0f;
 
   for (int32_t wy = wy0; wy <= py1; wy += rows) {
     const auto e0 = hn::Add(hn::Set(di, e_row[0]), lane_e0);
@@ -996,7 +1001,6 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       e_row[e] += st.step_y[e] * rows;
     const int32_t by = wy >> 3, r = wy & 7;
     const auto fy = hn::Add(fy_lane, hn::Set(df, static_cast<float>(r)));
-    const double dy = by * 8.0 - t.y0;
     const auto box = hn::And(cols_in, hn::Lt(row, hn::Set(di, py1 - wy + 1)));
     // Inside edge e at sample s when E > threshold (one sample: the only coverage).
     const auto covered = [&](const int32_t(&threshold)[3]) {
@@ -1023,8 +1027,12 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
     if constexpr (kCount && !kMulti)
       st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov_any));
     if constexpr (kDepth != DepthMode::kOff) {
-      const float za = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
-      const float zb = static_cast<float>(t.z0 + t.z_dx * (dx + 8.0) + t.z_dy * dy);
+      if (by != z_row) {
+        z_row = by;
+        const double dy = by * 8.0 - t.y0;
+        za = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
+        zb = static_cast<float>(t.z0 + t.z_dx * (dx + 8.0) + t.z_dy * dy);
+      }
       const auto z_rel =
           hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
       // Sample s's stored values at the lanes' pixels.
@@ -1099,22 +1107,29 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       const auto any = kMulti ? hn::RebindMask(df, hn::Ne(pass_bits, hn::Zero(du))) : pass_one;
       if (hn::AllFalse(df, any)) continue;
       if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(df, any));
-      const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
-      const float fdx_b = static_cast<float>(dx + 8.0);
-      const auto plane = [&](float base, float gx, float gy, float& a_base, float& b_base) {
-        a_base = base + (gx * fdx + gy * fdy);
-        b_base = base + (gx * fdx_b + gy * fdy);
+      if (by != colour_row) {
+        colour_row = by;
+        const float fdx = static_cast<float>(dx), fdy = static_cast<float>(by * 8.0 - t.y0);
+        const float fdx_b = static_cast<float>(dx + 8.0);
+        for (int c = 0; c < 4; ++c) {
+          qa_a[c] = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
+          qa_b[c] = t.qa0[c] + (t.qa_dx[c] * fdx_b + t.qa_dy[c] * fdy);
+        }
+        if (!t.flat_q) {
+          q_a = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
+          q_b = t.q0 + (t.q_dx * fdx_b + t.q_dy * fdy);
+        }
+      }
+      const auto plane = [&](float a_base, float b_base, float gx, float gy) {
         return hn::Add(bases(a_base, b_base),
                        hn::Add(hn::Mul(fx, hn::Set(df, gx)), hn::Mul(fy, hn::Set(df, gy))));
       };
-      float qa_a[4], qa_b[4];
-      auto red = plane(t.qa0[0], t.qa_dx[0], t.qa_dy[0], qa_a[0], qa_b[0]);
-      auto green = plane(t.qa0[1], t.qa_dx[1], t.qa_dy[1], qa_a[1], qa_b[1]);
-      auto blue = plane(t.qa0[2], t.qa_dx[2], t.qa_dy[2], qa_a[2], qa_b[2]);
-      auto alpha = plane(t.qa0[3], t.qa_dx[3], t.qa_dy[3], qa_a[3], qa_b[3]);
+      auto red = plane(qa_a[0], qa_b[0], t.qa_dx[0], t.qa_dy[0]);
+      auto green = plane(qa_a[1], qa_b[1], t.qa_dx[1], t.qa_dy[1]);
+      auto blue = plane(qa_a[2], qa_b[2], t.qa_dx[2], t.qa_dy[2]);
+      auto alpha = plane(qa_a[3], qa_b[3], t.qa_dx[3], t.qa_dy[3]);
       if (!t.flat_q) {
-        float q_a, q_b;
-        const auto q = plane(t.q0, t.q_dx, t.q_dy, q_a, q_b);
+        const auto q = plane(q_a, q_b, t.q_dx, t.q_dy);
         const auto inv_q = hn::Div(hn::Set(df, 1.0f), q);
         red = hn::Mul(red, inv_q);
         green = hn::Mul(green, inv_q);
