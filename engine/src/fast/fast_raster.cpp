@@ -313,7 +313,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     while (used < chunk_count && st.chunks[used].stopped_at == st.chunks[used].end)
       ++used;
     const size_t last = std::min(used, chunk_count - 1);
-    if (check_finite) {
+    if (ctx.check_finite) {
       // A NaN or infinity met in setup, or more passes to come whose vertices this pass did
       // not read: the whole draw's values are checked (throwing validation's error) before
       // this pass draws anything.
@@ -327,7 +327,6 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
         }
       }
       // Every value is checked now: the later passes' setups need not check theirs again.
-      check_finite = false;
       ctx.check_finite = false;
     }
     const size_t kept = last + 1;

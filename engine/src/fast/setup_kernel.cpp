@@ -793,7 +793,6 @@ HWY_INLINE void SetupVertices(const SetupContext& ctx, const VF (&pos)[3][4],
 void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<float, decltype(d)> df;
-  out.clipped = out.kept = out.binned = out.pixel = 0;
   for (size_t l0 = 0; l0 < lanes_used; l0 += hn::Lanes(d)) {
     hn::Vec<decltype(df)> pos[3][4], color[3][4];  // x, y, z, w and r, g, b, a of each vertex
     for (int k = 0; k < 3; ++k) {
@@ -830,7 +829,6 @@ void SetupListLanes(const SetupContext& ctx, const float* positions, const float
                     Out& out) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<float, decltype(d)> df;
-  out.clipped = out.kept = out.binned = out.pixel = 0;
   hn::Vec<decltype(df)> pos[3][4], color[3][4];
   LoadTriangleValues(df, positions, pos);
   LoadTriangleValues(df, colors, color);
@@ -839,20 +837,6 @@ void SetupListLanes(const SetupContext& ctx, const float* positions, const float
 
 }  // namespace
 
-// Whether the batch's first `lanes` lanes of positions and colours are all finite. Each
-// vertex's lanes hold 4 * lanes floats, two float vectors (lanes = Lanes(double)).
-HWY_INLINE bool batch_finite(const Batch& batch, size_t lanes) {
-  const hn::ScalableTag<float> df;
-  auto finite = hn::FirstN(df, hn::Lanes(df));
-  for (int k = 0; k < 3; ++k) {
-    for (size_t i = 0; i < lanes * 4; i += hn::Lanes(df)) {
-      finite = hn::And(finite, hn::IsFinite(hn::LoadU(df, &batch.position[k][0].x + i)));
-      finite = hn::And(finite, hn::IsFinite(hn::LoadU(df, &batch.color[k][0][0] + i)));
-    }
-  }
-  return hn::AllTrue(df, finite);
-}
-
 // Whether `count` floats from `from` are all finite (count: a multiple of the float lanes).
 HWY_INLINE bool range_finite(const float* from, size_t count) {
   const hn::ScalableTag<float> df;
@@ -860,6 +844,17 @@ HWY_INLINE bool range_finite(const float* from, size_t count) {
   for (size_t i = 0; i < count; i += hn::Lanes(df))
     finite = hn::And(finite, hn::IsFinite(hn::LoadU(df, from + i)));
   return hn::AllTrue(df, finite);
+}
+
+// Whether the batch's first `lanes` lanes of positions and colours are all finite. Each
+// vertex's lanes hold 4 * lanes floats, two float vectors (lanes = Lanes(double)).
+HWY_INLINE bool batch_finite(const Batch& batch, size_t lanes) {
+  bool finite = true;
+  for (int k = 0; k < 3; ++k) {
+    finite = finite && range_finite(&batch.position[k][0].x, 4 * lanes) &&
+             range_finite(&batch.color[k][0][0], 4 * lanes);
+  }
+  return finite;
 }
 
 // Copies triangles [t, t + used) of the draw into the batch's first lanes (of `lanes`); spare
@@ -924,6 +919,7 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
   if (ctx.sample_records) samples.resize(next_sample + (end - begin));
   for (size_t t = begin; t < end; t += lanes) {
     const size_t used = std::min(lanes, end - t);
+    out.clipped = out.kept = out.binned = out.pixel = 0;  // the lane groups OR their bits in
     if (in_place && used == lanes) {
       const float* positions = &input.positions[t * 3].x;
       const float* colors = &input.attributes[t * 12];
