@@ -728,7 +728,11 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
   }
   // At one sample the bits are the pixel records' centres, and the setups carry none.
   hn::Store(ctx.samples == 1 ? zero : sample_mask, d, out.sample_bits + l0);
-  out.binned |= mask_bits(d, hn::And(keep, any_sample)) << l0;
+  const auto binned = hn::And(keep, any_sample);
+  out.binned |= mask_bits(d, binned) << l0;
+  // Lanes that are not binned need nothing below (their planes, records and setups): a vector
+  // of them, common where a dense mesh's triangles cover no pixel centre, stops here.
+  if (hn::AllFalse(d, binned)) return;
 
   auto plane = [&](V v0, V v1, V v2, double* at0, double* gx, double* gy) {
     hn::Store(
@@ -770,7 +774,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
   out.pixel |= mask_bits(d, any_pixel) << l0;
   // Setup records only for lanes that are binned and not pixel records (the clipper makes its
   // own): often none, with tiny triangles.
-  const auto full = hn::AndNot(any_pixel, hn::And(keep, any_sample));
+  const auto full = hn::AndNot(any_pixel, binned);
   if (!hn::AllFalse(d, full)) PackLanes(d, l0, out);
 }
 
