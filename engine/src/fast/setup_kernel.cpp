@@ -592,10 +592,12 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     const bool row_pairs =
         kPerLane == 2 && samples == 1 && ctx.centre_sample_only() && !nine && !ctx.sample_records;
     // row: the first row's edge values in both halves, or with row_pairs the first row in the
-    // low halves and the second in the high.
+    // low halves and the second in the high. least: each group's sample offsets, which the
+    // general loop subtracts (row_pairs has none to subtract and forms none).
     VS least[3][4 / kPerLane], row[3], step_x[3], step_y[3];
+    const uint32_t offset_groups = row_pairs ? 0 : groups;
     for (int k = 0; k < 3; ++k) {
-      for (uint32_t j = 0; j < (row_pairs ? 0 : groups); ++j) {
+      for (uint32_t j = 0; j < offset_groups; ++j) {
         const auto offset = [&](uint32_t s) {
           const V sx = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dx[s]} << shift));
           const V sy = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dy[s]} << shift));
