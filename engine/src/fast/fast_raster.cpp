@@ -31,6 +31,14 @@ namespace {
 // Triangles per chunk below which splitting the setup across workers does not pay.
 constexpr size_t kMinChunkTriangles = 4096;
 
+// Chunks per worker in a draw with several workers. A worker takes whole chunks, so the setup
+// phase ends with one worker idle while the other finishes its last ones, and the chunks of a
+// mesh differ in cost (`grid` at two threads: its first four chunks took 8 to 9 ms each, the
+// last four about 7). At 4 per worker the two workers were busy 91-94% of `grid`'s setup
+// phase, at 8 96-98% (benchmarks/RESULTS.md). More chunks split each tile's references into
+// more, shorter lists.
+constexpr size_t kChunksPerWorker = 8;
+
 // The most bytes of setups a pass makes, unless the framebuffer is larger. The raster phase
 // reads each tile's setups at scattered places: when a pass's setups fit in cache, it reads
 // them there instead of from memory, and each extra pass costs one more sweep of the
@@ -165,8 +173,8 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   // gets an equal share and grows its arrays only within it; fewer chunks when their per-tile
   // arrays would take more than a quarter of the budget. A batch that would pass a chunk's
   // share is undone and ends the chunk's part of the pass.
-  size_t chunk_count =
-      std::clamp<size_t>(triangles / kMinChunkTriangles, 1, threads <= 1 ? 1 : size_t{4} * threads);
+  size_t chunk_count = std::clamp<size_t>(triangles / kMinChunkTriangles, 1,
+                                          threads <= 1 ? 1 : kChunksPerWorker * threads);
   const uint64_t per_tile = binning::Bins::kBytesPerTile;
   while (chunk_count > 1 && chunk_count * (tiles + 1) * per_tile * 4 > st.budget)
     --chunk_count;
