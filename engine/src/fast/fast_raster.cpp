@@ -31,13 +31,18 @@ namespace {
 // Triangles per chunk below which splitting the setup across workers does not pay.
 constexpr size_t kMinChunkTriangles = 4096;
 
-// Chunks per worker in a draw with several workers. A worker takes whole chunks, so the setup
-// phase ends with one worker idle while the other finishes its last ones, and the chunks of a
-// mesh differ in cost (`grid` at two threads: its first four chunks took 8 to 9 ms each, the
-// last four about 7). At 4 per worker the two workers were busy 91-94% of `grid`'s setup
-// phase, at 8 96-98% (benchmarks/RESULTS.md). More chunks split each tile's references into
-// more, shorter lists.
-constexpr size_t kChunksPerWorker = 8;
+// Chunks per worker in a draw with several workers: kFineChunksPerWorker when each chunk still
+// holds at least kFineChunkTriangles triangles, else kChunksPerWorker. A worker takes whole
+// chunks, so the setup phase ends with one worker idle while the other finishes its last ones,
+// and the chunks of a mesh differ in cost (`grid` at two threads: its first four chunks took
+// 8 to 9 ms each, the last four about 7). At 4 chunks per worker the two workers were busy
+// 91-94% of `grid`'s setup phase, at 8 96-98% (benchmarks/RESULTS.md). More chunks also split
+// each tile's references into more, shorter lists: `medium` (200,000 triangles), whose raster
+// phase dominates, took 0.93 to 1.17 times as long with 8 in seven alternating rounds (median
+// 1.04), and keeps 4.
+constexpr size_t kChunksPerWorker = 4;
+constexpr size_t kFineChunksPerWorker = 8;
+constexpr size_t kFineChunkTriangles = 32768;
 
 // The most bytes of setups a pass makes, unless the framebuffer is larger. The raster phase
 // reads each tile's setups at scattered places: when a pass's setups fit in cache, it reads
@@ -173,8 +178,12 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   // gets an equal share and grows its arrays only within it; fewer chunks when their per-tile
   // arrays would take more than a quarter of the budget. A batch that would pass a chunk's
   // share is undone and ends the chunk's part of the pass.
+  const size_t per_worker =
+      triangles >= size_t{kFineChunksPerWorker} * threads * kFineChunkTriangles
+          ? kFineChunksPerWorker
+          : kChunksPerWorker;
   size_t chunk_count = std::clamp<size_t>(triangles / kMinChunkTriangles, 1,
-                                          threads <= 1 ? 1 : kChunksPerWorker * threads);
+                                          threads <= 1 ? 1 : per_worker * threads);
   const uint64_t per_tile = binning::Bins::kBytesPerTile;
   while (chunk_count > 1 && chunk_count * (tiles + 1) * per_tile * 4 > st.budget)
     --chunk_count;
