@@ -35,7 +35,7 @@ constexpr size_t kMinChunkTriangles = 4096;
 // holds at least kFineChunkTriangles triangles, else kChunksPerWorker. A worker takes whole
 // chunks, so the setup phase ends with one worker idle while the other finishes its last ones,
 // and the chunks of a mesh differ in cost (`grid` at two threads: its first four chunks took
-// 8 to 9 ms each, the last four about 7). At 4 chunks per worker the two workers were busy
+// 7.5 to 9.3 ms each, the last four 6.9 to 7.5). At 4 chunks per worker the two workers were busy
 // 91-94% of `grid`'s setup phase, at 8 96-98% (benchmarks/RESULTS.md). More chunks also split
 // each tile's references into more, shorter lists: `medium` (200,000 triangles), whose raster
 // phase dominates, took 0.93 to 1.17 times as long with 8 in seven alternating rounds (median
