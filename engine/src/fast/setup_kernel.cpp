@@ -658,9 +658,10 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
       mask_bits64 =
           hn::Or(hn::And(mask_bits64, hn::Set(d64, 0xFFFFFFFF)), hn::ShiftRight<29>(mask_bits64));
     } else {
-      // A row or column that lies in no lane's box, nor do the ones after it: its pixels'
-      // masks would all be 0 (the rows and columns of `grid`'s boxes at four samples: 64% of
-      // its vectors need no third row, 76% no third column).
+      // The tests stop at the first row, and in a row at the first column, that lies in no
+      // lane's box: neither do the ones after it, and their pixels' masks would all be 0. (At
+      // four samples no lane's box has a third row in 64% of `grid`'s vectors, nor a third
+      // column in 76%.)
       for (uint32_t py = 0; py < 3; ++py) {
         const auto row_in_box =
             hn::And(nine ? box : fits, hn::Le(hn::Set(d, static_cast<double>(py)), last_y));
