@@ -6,6 +6,7 @@
 // planes round exactly as the scalar code does. The setups are therefore the same bits on
 // every target. Triangles that a clip plane cuts leave the vector path for the scalar clipper.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -823,9 +824,66 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
 // vertices per triangle in order (Lanes(df) triangles: 12 * Lanes(df) floats from `from`), as
 // value[vertex][component] vectors whose lane l is triangle l's: each component is first
 // gathered from the four interleaved, then the vertices from the three.
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+// The index tables of LoadTriangleValues' two-source permutes (vpermt2ps: index bit 4 picks
+// the second source). pairs(p): lanes 0-7 component 2p, lanes 8-15 component 2p + 1, of the
+// 8 vertices in two 512-bit loads (32 floats). merge(k, second): lane t of each half takes
+// vertex 3t + k of the 24, which lies in vertex group g = (3t + k) / 8 at lane (3t + k) % 8
+// of that group's pair vectors; the first merge takes groups 0 and 1, the second keeps
+// those lanes and takes group 2's.
+constexpr std::array<int32_t, 16> pair_index(int32_t p) {
+  std::array<int32_t, 16> index{};
+  for (int32_t i = 0; i < 16; ++i)
+    index[i] = i < 8 ? 4 * i + 2 * p : 4 * (i - 8) + 2 * p + 1;
+  return index;
+}
+constexpr std::array<int32_t, 16> merge_index(int32_t k, bool second) {
+  std::array<int32_t, 16> index{};
+  for (int32_t lane = 0; lane < 16; ++lane) {
+    const int32_t v = 3 * (lane % 8) + k, g = v / 8, at = v % 8 + (lane < 8 ? 0 : 8);
+    if (second) {
+      index[lane] = g == 2 ? 16 + at : lane;
+    } else {
+      index[lane] = g == 2 ? 0 : g * 16 + at;
+    }
+  }
+  return index;
+}
+#endif
+
 template <class DF>
 HWY_INLINE void LoadTriangleValues(DF df, const float* HWY_RESTRICT from,
                                    hn::Vec<DF> (&value)[3][4]) {
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+  if constexpr (hn::MaxLanes(df) == 8) {
+    // AVX-512, 8 triangles: their 96 floats in six 512-bit loads, then two rounds of
+    // two-source permutes, which put two components of one vertex side by side in a vector
+    // (half as many shuffles as the interleaved loads and the store between them).
+    alignas(64) static constexpr std::array<int32_t, 16> kPairs[2] = {pair_index(0), pair_index(1)};
+    alignas(64) static constexpr std::array<int32_t, 16> kMerge[3][2] = {
+        {merge_index(0, false), merge_index(0, true)},
+        {merge_index(1, false), merge_index(1, true)},
+        {merge_index(2, false), merge_index(2, true)}};
+    __m512 pairs[3][2];  // [vertex group][component pair]
+    for (int g = 0; g < 3; ++g) {
+      const __m512 lo = _mm512_loadu_ps(from + 32 * g), hi = _mm512_loadu_ps(from + 32 * g + 16);
+      for (int p = 0; p < 2; ++p) {
+        pairs[g][p] = _mm512_permutex2var_ps(lo, _mm512_load_si512(kPairs[p].data()), hi);
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      const __m512i first = _mm512_load_si512(kMerge[k][0].data());
+      const __m512i second = _mm512_load_si512(kMerge[k][1].data());
+      for (int p = 0; p < 2; ++p) {
+        const __m512 both = _mm512_permutex2var_ps(
+            _mm512_permutex2var_ps(pairs[0][p], first, pairs[1][p]), second, pairs[2][p]);
+        value[k][2 * p] = hn::Vec<DF>{_mm512_castps512_ps256(both)};
+        value[k][2 * p + 1] = hn::Vec<DF>{_mm512_extractf32x8_ps(both, 1)};
+      }
+    }
+    return;
+  }
+#endif
   const size_t n = hn::Lanes(df);
   HWY_ALIGN float component[4][3 * kMaxLanes];
   for (size_t j = 0; j < 3; ++j) {
