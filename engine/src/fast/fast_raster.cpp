@@ -178,10 +178,9 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   // gets an equal share and grows its arrays only within it; fewer chunks when their per-tile
   // arrays would take more than a quarter of the budget. A batch that would pass a chunk's
   // share is undone and ends the chunk's part of the pass.
-  const size_t per_worker =
-      triangles >= size_t{kFineChunksPerWorker} * threads * kFineChunkTriangles
-          ? kFineChunksPerWorker
-          : kChunksPerWorker;
+  const size_t per_worker = triangles >= kFineChunksPerWorker * threads * kFineChunkTriangles
+                                ? kFineChunksPerWorker
+                                : kChunksPerWorker;
   size_t chunk_count = std::clamp<size_t>(triangles / kMinChunkTriangles, 1,
                                           threads <= 1 ? 1 : per_worker * threads);
   const uint64_t per_tile = binning::Bins::kBytesPerTile;

@@ -820,10 +820,6 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
   }
 }
 
-// One vector's worth of a triangle list's vertex values, four floats per vertex and three
-// vertices per triangle in order (Lanes(df) triangles: 12 * Lanes(df) floats from `from`), as
-// value[vertex][component] vectors whose lane l is triangle l's: each component is first
-// gathered from the four interleaved, then the vertices from the three.
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
 // The index tables of LoadTriangleValues' two-source permutes (vpermt2ps: index bit 4 picks
 // the second source). pairs(p): lanes 0-7 component 2p, lanes 8-15 component 2p + 1, of the
@@ -851,6 +847,10 @@ constexpr std::array<int32_t, 16> merge_index(int32_t k, bool second) {
 }
 #endif
 
+// One vector's worth of a triangle list's vertex values, four floats per vertex and three
+// vertices per triangle in order (Lanes(df) triangles: 12 * Lanes(df) floats from `from`), as
+// value[vertex][component] vectors whose lane l is triangle l's: each component is first
+// gathered from the four interleaved, then the vertices from the three.
 template <class DF>
 HWY_INLINE void LoadTriangleValues(DF df, const float* HWY_RESTRICT from,
                                    hn::Vec<DF> (&value)[3][4]) {
