@@ -520,9 +520,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
         }
       }
       if constexpr (kColor == ColorMode::kRGBA8) {
-        const auto packed = hn::Or(
-            hn::Or(to_unorm8(df, r), hn::ShiftLeft<8>(to_unorm8(df, g))),
-            hn::Or(hn::ShiftLeft<16>(to_unorm8(df, b)), hn::ShiftLeft<24>(to_unorm8(df, a))));
+        const auto packed = pack_unorm8(df, r, g, b, a);
         uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + block * 64 + i;
         if (samples == 1) {
           hn::BlendedStore(packed, any, du, colour);
@@ -1162,9 +1160,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
           load_channels(df, channel, red, green, blue, alpha);
         }
       }
-      const auto packed = hn::Or(
-          hn::Or(to_unorm8(df, red), hn::ShiftLeft<8>(to_unorm8(df, green))),
-          hn::Or(hn::ShiftLeft<16>(to_unorm8(df, blue)), hn::ShiftLeft<24>(to_unorm8(df, alpha))));
+      const auto packed = pack_unorm8(df, red, green, blue, alpha);
       uint32_t* const colour = reinterpret_cast<uint32_t*>(tc.rgba8);
       for (uint32_t s = 0; s < samples; ++s) {
         const auto m =

@@ -14,6 +14,7 @@
 #include <hwy/highway.h>
 
 #include "binning/tile_grid.hpp"
+#include "engine/src/fast/unorm8-inl.h"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
 
@@ -69,17 +70,6 @@ void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, siz
       packed |= uint32_t{to_unorm8(color[c])} << (8 * c);
     out.rgba[i] = packed;
   }
-}
-#else
-// to_unorm8 of finite values: k = truncate(clamp(c, 0, 1) * 255 + 0.5), in the low byte of the
-// result; the bits above hold 2^23's exponent (k is read off floor(...) + 2^23, whose
-// significand is k), which a shift by 8 or more or a mask removes.
-template <class DF, class VF>
-HWY_INLINE auto unorm8_low_byte(DF df, VF c) {
-  const auto clamped = hn::Min(hn::Max(c, hn::Zero(df)), hn::Set(df, 1.0f));
-  const auto scaled = hn::Add(hn::Mul(clamped, hn::Set(df, 255.0f)), hn::Set(df, 0.5f));
-  return hn::BitCast(hn::RebindToUnsigned<DF>(),
-                     hn::Add(hn::Floor(scaled), hn::Set(df, 8388608.0f)));
 }
 #endif
 
@@ -196,12 +186,7 @@ void ShadeLinePixels(const LineShading& sh, const int32_t* x, const int32_t* y, 
       b = hn::Add(hn::Mul(b, alpha), hn::Mul(channel(16), keep));
       a = hn::Add(alpha, hn::Mul(channel(24), keep));
     }
-    // Shifting g, b and a left by 8 or more drops the exponent bits; r's are masked off.
-    hn::StoreU(hn::Or(hn::Or(hn::And(unorm8_low_byte(df, r), hn::Set(du, 0xFFu)),
-                             hn::ShiftLeft<8>(unorm8_low_byte(df, g))),
-                      hn::Or(hn::ShiftLeft<16>(unorm8_low_byte(df, b)),
-                             hn::ShiftLeft<24>(unorm8_low_byte(df, a)))),
-               du, out.rgba + i);
+    hn::StoreU(pack_unorm8(df, r, g, b, a), du, out.rgba + i);
     hn::StoreU(lerp_to_float(df, dd, sh.z, sh.dz, t_lo, t_hi), df, out.depth + i);
   }
 #else

@@ -251,7 +251,10 @@ HWY_INLINE auto RecordValues(D d, size_t l0, VI first, const Out& out, const Slo
       const auto v = hn::Add(qa_base, hn::Add(hn::Mul(fx, qa_dx[c]), hn::Mul(fy, qa_dy[c])));
       auto value = all_flat ? v : hn::IfThenElse(flat_f, v, hn::Mul(v, inv_q));
       if (any_beyond) value = hn::IfThenElse(beyond, hn::Div(v, q), value);
-      packed = hn::Or(packed, hn::ShiftLeftSame(to_unorm8(df, value), 8 * c));
+      // Red's bits above its byte masked off, the others' shifted out.
+      const auto byte = unorm8_low_byte(df, value);
+      packed = hn::Or(packed,
+                      c == 0 ? hn::And(byte, hn::Set(du, 0xFFu)) : hn::ShiftLeftSame(byte, 8 * c));
     }
     slot(i, place, z_base, z_clamped, packed);
   }
