@@ -22,7 +22,7 @@ namespace tessera::fast::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 // Packs channel values r[i], g[i], b[i], a[i] into out[i], a vector at a time (n: a multiple
-// of 16, the most float lanes of any target).
+// of 64, the most float lanes of any target: 2048-bit SVE vectors).
 void PackChannels(const float* r, const float* g, const float* b, const float* a, uint32_t* out,
                   size_t n) {
   const hn::ScalableTag<float> df;
@@ -70,7 +70,7 @@ std::vector<float> test_values() {
         std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::quiet_NaN(),
         std::bit_cast<float>(0x7f800001u), std::bit_cast<float>(0xffc00001u)})
     values.push_back(special);
-  while (values.size() % 16 != 0)
+  while (values.size() % 64 != 0)
     values.push_back(0.5f);
   return values;
 }
