@@ -244,19 +244,15 @@ HWY_INLINE auto RecordValues(D d, size_t l0, VI first, const Out& out, const Slo
       any_beyond = !hn::AllFalse(df, beyond);
       any_beyond_lanes = hn::Or(any_beyond_lanes, beyond);
     }
-    const hn::Rebind<uint32_t, D> du;
-    auto packed = hn::Zero(du);
+    hn::Vec<decltype(df)> channel[4];
     for (int c = 0; c < 4; ++c) {
       const auto qa_base = hn::Add(qa0[c], hn::Add(hn::Mul(qa_dx[c], fdx), hn::Mul(qa_dy[c], fdy)));
       const auto v = hn::Add(qa_base, hn::Add(hn::Mul(fx, qa_dx[c]), hn::Mul(fy, qa_dy[c])));
-      auto value = all_flat ? v : hn::IfThenElse(flat_f, v, hn::Mul(v, inv_q));
-      if (any_beyond) value = hn::IfThenElse(beyond, hn::Div(v, q), value);
-      // Red's bits above its byte masked off, the others' shifted out.
-      const auto byte = unorm8_low_byte(df, value);
-      packed = hn::Or(packed,
-                      c == 0 ? hn::And(byte, hn::Set(du, 0xFFu)) : hn::ShiftLeftSame(byte, 8 * c));
+      channel[c] = all_flat ? v : hn::IfThenElse(flat_f, v, hn::Mul(v, inv_q));
+      if (any_beyond) channel[c] = hn::IfThenElse(beyond, hn::Div(v, q), channel[c]);
     }
-    slot(i, place, z_base, z_clamped, packed);
+    slot(i, place, z_base, z_clamped,
+         pack_unorm8(df, channel[0], channel[1], channel[2], channel[3]));
   }
   return any_beyond_lanes;
 }

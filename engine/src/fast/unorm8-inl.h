@@ -1,7 +1,7 @@
 // Float colour to unorm8 in SIMD lanes, written once against Highway for every target: the
-// raster kernel (block_kernel-inl.h) and the vectorized setup's pixel records
-// (setup_kernel.cpp) convert with the same operations, so a pixel gets the same byte whichever
-// of them computes it.
+// raster kernel (block_kernel-inl.h), the vectorized setup's pixel and sample records
+// (setup_kernel.cpp) and the line kernel (line_kernel.cpp) convert with the same operations, so
+// a pixel gets the same byte whichever of them computes it.
 
 // Per-target include guard (as block_kernel-inl.h's).
 #if defined(TESSERA_ENGINE_SRC_FAST_UNORM8_INL_H_) == defined(HWY_TARGET_TOGGLE)
