@@ -993,40 +993,6 @@ TEST(FastEngine, SmallBinBudgetRendersInPassesWithTheSameImage) {
   });
 }
 
-// Under the default budget, a draw whose setups pass the cache-sized limit of a pass
-// (kPassSetupBytes, 32 MiB: about 210,000 setups) is drawn in several passes. The image and
-// depth are those of the same triangles drawn as two draws small enough for one pass each.
-TEST(FastEngine, ADrawWithManySetupsIsDrawnInPassesWithTheSameImage) {
-  const Scene s = soup(720, 300000, 30.0f, false);
-  const size_t half = s.positions.size() / 6 * 3;  // a whole number of triangles
-  for (uint32_t threads : {1u, 2u}) {
-    SCOPED_TRACE(std::to_string(threads) + " threads");
-    const auto draw = [&](const std::vector<std::pair<size_t, size_t>>& draws) {
-      RendererOptions options;
-      options.threads = threads;
-      Renderer renderer(options);
-      Framebuffer fb({s.width, s.height, s.samples, s.format, s.depth_format});
-      fb.clear_color({0.1f, 0.2f, 0.3f, 1.0f});
-      for (const auto& [first, count] : draws) {
-        DrawInput input;
-        input.positions = std::span(s.positions).subspan(first, count);
-        input.attributes = std::span(s.colors).subspan(first * 4, count * 4);
-        input.attribute_count = 4;
-        renderer.draw(fb, s.pipeline, input);
-      }
-      return std::tuple{fb.read_rgba8(), fb.read_depth(), renderer.counters()};
-    };
-    const auto [whole_rgba8, whole_depth, whole] = draw({{0, s.positions.size()}});
-    const auto [split_rgba8, split_depth, split] =
-        draw({{0, half}, {half, s.positions.size() - half}});
-    EXPECT_GE(whole.bin_passes, 2u);
-    EXPECT_EQ(split.bin_passes, 2u);
-    EXPECT_EQ(whole.triangles_rasterized, split.triangles_rasterized);
-    EXPECT_EQ(whole_rgba8, split_rgba8);
-    EXPECT_EQ(whole_depth, split_depth);
-  }
-}
-
 TEST(FastEngine, RasterCountersOffDrawTheSameImageAndCountNoRasterWork) {
   Scene s = soup(710, 5000, 60.0f, false, true);
   s.samples = 4;

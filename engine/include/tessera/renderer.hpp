@@ -28,9 +28,6 @@ enum class SimdTarget { kAuto, kScalar, kSSE4, kAVX2, kAVX512, kNEON, kSVE };
 // kept for the next draw). A draw that needs more is rasterized in several passes; nothing is
 // dropped. Only a single triangle whose own references pass the whole budget (a triangle
 // over very many tiles under a tiny budget) is binned anyway, exceeding it by that triangle.
-// A draw of many triangles that are not tiny is also split into passes of about 32 MiB of
-// set-up triangles (or the framebuffer's size, if larger), which the raster phase then reads
-// from cache instead of memory; the image is the same.
 inline constexpr uint64_t kDefaultBinMemoryBudget = uint64_t{256} << 20;
 
 // A triangle draw's answer to non-finite input (a NaN or an infinity in a vertex's position or

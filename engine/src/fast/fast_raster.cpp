@@ -44,14 +44,6 @@ constexpr size_t kChunksPerWorker = 4;
 constexpr size_t kFineChunksPerWorker = 8;
 constexpr size_t kFineChunkTriangles = 32768;
 
-// The most bytes of setups a pass makes, unless the framebuffer is larger. The raster phase
-// reads each tile's setups at scattered places: when a pass's setups fit in cache, it reads
-// them there instead of from memory, and each extra pass costs one more sweep of the
-// framebuffer. On `small` (1M triangles of 16 px, 160 MB of setups) at one sample, passes of
-// 16 to 48 MB of setups took about 0.8x the time of one pass, and 96 MB about 0.9x
-// (benchmarks/RESULTS.md). 32 MB leaves `medium` (200,000 setups) in one pass.
-constexpr uint64_t kPassSetupBytes = uint64_t{32} << 20;
-
 struct Chunk {
   SetupList setups;    // reserved to the pass's capacity: never grows past the budget
   PixelList pixels;    // reserved as setups at one sample (each triangle takes one or the other)
@@ -89,8 +81,6 @@ struct FastRasterizer::State {
   // which thread drew which tile).
   tbb::enumerable_thread_specific<Counters> raster_counters;
   double references_per_triangle = 1.5;  // of the last pass: splits the bin budget
-  // Setups (not pixel or sample records) per triangle of the last pass: sizes the passes.
-  double setups_per_triangle = 1.0;
 };
 
 FastRasterizer::FastRasterizer(int64_t simd_target, const RendererOptions& options)
@@ -225,16 +215,10 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
                                : 0,
                            tiles);
     const size_t remaining = triangles - start;
-    // As many triangles as the budget holds, and no more than make kPassSetupBytes of setups
-    // (or the framebuffer's bytes, if more) at the last pass's share of setups.
-    const uint64_t fb_bytes =
-        fb.depth.size() * sizeof(float) + fb.rgba8.size() + fb.rgba32f.size() * sizeof(float);
-    const double setup_share = std::max(st.setups_per_triangle, 1.0 / 1024);
-    const auto cached =
-        static_cast<size_t>(static_cast<double>(std::max(kPassSetupBytes, fb_bytes)) /
-                            (setup_share * static_cast<double>(sizeof(TriangleSetup))));
-    const size_t pass = std::min({remaining, setup_capacity * chunk_count * 9 / 10 + 1,
-                                  std::max(cached, kMinChunkTriangles)});
+    // As many triangles as the budget holds. (A pass is not cut shorter to keep its setups in
+    // cache: on `small` one pass took 0.92x the time of 32 MiB passes at one sample and 0.86x
+    // at four; see benchmarks/RESULTS.md.)
+    const size_t pass = std::min(remaining, setup_capacity * chunk_count * 9 / 10 + 1);
     for (size_t c = 0; c < chunk_count; ++c) {
       st.chunks[c].begin = start + pass * c / chunk_count;
       st.chunks[c].end = start + pass * (c + 1) / chunk_count;
@@ -347,7 +331,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     }
     const size_t kept = last + 1;
     std::vector<ChunkView> views(kept);
-    uint64_t kept_setups = 0, kept_references = 0, full_setups = 0;
+    uint64_t kept_setups = 0, kept_references = 0;
     for (size_t c = 0; c < kept; ++c) {
       views[c] = {st.chunks[c].setups.data(), st.chunks[c].pixels.data(),
                   st.chunks[c].samples.data(), &st.chunks[c].bins};
@@ -359,15 +343,10 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       counters.bin_references += st.chunks[c].bins.references();
       kept_setups += st.chunks[c].bins.triangles();
       kept_references += st.chunks[c].bins.references();
-      full_setups += st.chunks[c].setups.size();
     }
     if (kept_setups > 0) {
       st.references_per_triangle =
           static_cast<double>(kept_references) / static_cast<double>(kept_setups);
-    }
-    if (st.chunks[last].stopped_at > start) {
-      st.setups_per_triangle = static_cast<double>(full_setups) /
-                               static_cast<double>(st.chunks[last].stopped_at - start);
     }
     ++counters.bin_passes;
 
