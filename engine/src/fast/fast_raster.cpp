@@ -258,9 +258,15 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
           const size_t worst = binned + std::min(batch, chunk.end - t) * kMaxPieces;
           if (worst > chunk.setups.capacity() && chunk.setups.capacity() < setup_capacity) {
             // Enough for the rest of the range at one piece per triangle plus a batch's worst
-            // case, so the usual draw grows its setups once.
+            // case, so the usual draw grows its setups once, and an eighth more where the
+            // budget allows: the next draw's passes, split by the references per triangle this
+            // one measured, are often a little longer, and reallocating the arrays (hundreds of
+            // megabytes, faulted in afresh) made that draw take several times as long.
             const size_t wanted = std::max(worst, binned + (chunk.end - t) + kBatch * kMaxPieces);
-            const size_t grown = std::min<size_t>(setup_capacity, wanted);
+            size_t grown = std::min<size_t>(setup_capacity, wanted + wanted / 8);
+            if (held(grown, chunk.bins.references()) > chunk_budget) {
+              grown = std::min<size_t>(setup_capacity, wanted);
+            }
             if (held(grown, chunk.bins.references()) <= chunk_budget || chunk.setups.empty()) {
               chunk.setups.reserve(grown);
               if (ctx.pixel_records) chunk.pixels.reserve(grown);
