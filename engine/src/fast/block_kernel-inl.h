@@ -1082,10 +1082,15 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
           test_sample(s, load_plane(s));
       }
       if constexpr (kDepth == DepthMode::kTestWrite) {
-        // The blocks with a sample written (any passing sample was).
+        // Both blocks when a sample of the window was written (any passing sample was): one
+        // branch, not one per block. A block marked without a change gets the same bounds when
+        // a Hi-Z test recomputes them, so verdicts and counters are unchanged (`small`, one
+        // thread: 0.95x to 0.96x the time at one sample, 0.92x to 0.99x at four).
         const auto wrote = kMulti ? hn::RebindMask(df, hn::Ne(pass_bits, hn::Zero(du))) : pass_one;
-        if (!hn::AllFalse(df, hn::And(wrote, in_a_f))) mark_hiz_dirty(tc, block_a);
-        if (two && !hn::AllFalse(df, hn::And(wrote, in_b_f))) mark_hiz_dirty(tc, block_b);
+        if (!hn::AllFalse(df, wrote)) {
+          mark_hiz_dirty(tc, block_a);
+          if (two) mark_hiz_dirty(tc, block_b);
+        }
       }
     } else if constexpr (kMulti) {
       for (uint32_t s = 0; s < samples; ++s) {
