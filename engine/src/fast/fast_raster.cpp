@@ -263,10 +263,10 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
             // one measured, are often a little longer, and reallocating the arrays (hundreds of
             // megabytes, faulted in afresh) made that draw take several times as long.
             const size_t wanted = std::max(worst, binned + (chunk.end - t) + kBatch * kMaxPieces);
-            size_t grown = std::min<size_t>(setup_capacity, wanted + wanted / 8);
-            if (held(grown, chunk.bins.references()) > chunk_budget) {
-              grown = std::min<size_t>(setup_capacity, wanted);
-            }
+            const size_t exact = std::min<size_t>(setup_capacity, wanted);
+            const size_t spare = std::min<size_t>(setup_capacity, wanted + wanted / 8);
+            const size_t grown =
+                held(spare, chunk.bins.references()) <= chunk_budget ? spare : exact;
             if (held(grown, chunk.bins.references()) <= chunk_budget || chunk.setups.empty()) {
               chunk.setups.reserve(grown);
               if (ctx.pixel_records) chunk.pixels.reserve(grown);
