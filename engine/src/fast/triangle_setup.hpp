@@ -59,7 +59,7 @@ struct TriangleSetup {
   // inside, bit ((y - y0) * 3 + (x - x0)) * samples + s, from exact edge functions. 0 when not
   // known (any other triangle): the kernel then tests the edges itself.
   uint32_t sample_bits;
-  uint32_t unused;  // to 160 bytes: five 32-byte pieces (setup_kernel.cpp streams them)
+  uint32_t unused;  // to 160 bytes: ten 16-byte pieces (setup_kernel.cpp streams them)
 };
 
 // Setups of one worker's range of a draw (large: see aligned_allocator.hpp). The vectorized
