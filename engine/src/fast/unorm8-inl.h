@@ -17,11 +17,33 @@ HWY_BEFORE_NAMESPACE();
 namespace tessera::fast::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+#if HWY_ARCH_X86 && HWY_TARGET != HWY_SCALAR && HWY_TARGET != HWY_EMU128
+// x86 converts floats to int32 by truncation in one instruction; Highway's ConvertTo adds a
+// fix-up for values past int32, which unorm8_low_byte's (0.5 to 255.5) never are.
+inline constexpr bool kTruncateInOne = true;
+HWY_INLINE __m128i truncate_to_int(__m128 v) {
+  return _mm_cvttps_epi32(v);
+}
+#if HWY_TARGET <= HWY_AVX2
+HWY_INLINE __m256i truncate_to_int(__m256 v) {
+  return _mm256_cvttps_epi32(v);
+}
+#endif
+#if HWY_TARGET <= HWY_AVX3
+HWY_INLINE __m512i truncate_to_int(__m512 v) {
+  return _mm512_cvttps_epi32(v);
+}
+#endif
+#else
+inline constexpr bool kTruncateInOne = false;
+#endif
+
 // to_unorm8 (sample_positions.hpp) in each lane's low byte: k = truncate(clamp(c, 0, 1) * 255 +
-// 0.5) (multiply, then add: never fused, the build forbids contraction), NaN 0. k is read off
-// floor(...) + 2^23, whose significand is k: no float-to-integer conversion, which Highway
-// follows with an overflow fix-up on x86. The bits above the low byte hold 2^23's exponent,
-// which a shift left by 8 or more, or a mask, removes.
+// 0.5) (multiply, then add: never fused, the build forbids contraction), NaN 0. On x86, k is
+// the truncating conversion of that sum, and the bits above the low byte are 0. Elsewhere k is
+// read off floor(...) + 2^23, whose significand is k (no float-to-integer conversion), and the
+// bits above the low byte hold 2^23's exponent, which a shift left by 8 or more, or a mask,
+// removes.
 template <class DF, class VF>
 HWY_INLINE auto unorm8_low_byte(DF df, VF c) {
 #if HWY_ARCH_X86
@@ -32,18 +54,24 @@ HWY_INLINE auto unorm8_low_byte(DF df, VF c) {
 #endif
   const auto clamped = hn::Min(positive, hn::Set(df, 1.0f));
   const auto scaled = hn::Add(hn::Mul(clamped, hn::Set(df, 255.0f)), hn::Set(df, 0.5f));
-  return hn::BitCast(hn::RebindToUnsigned<DF>(),
-                     hn::Add(hn::Floor(scaled), hn::Set(df, 8388608.0f)));
+  using VU = hn::Vec<hn::RebindToUnsigned<DF>>;
+  if constexpr (kTruncateInOne) {
+    return VU{truncate_to_int(scaled.raw)};
+  } else {
+    return hn::BitCast(hn::RebindToUnsigned<DF>(),
+                       hn::Add(hn::Floor(scaled), hn::Set(df, 8388608.0f)));
+  }
 }
 
 // Four channels' lanes as packed RGBA8 (pack_rgba8's bytes): g, b and a shifted left by 8 or
-// more, which drops the exponent bits, and r's masked off.
+// more, which drops any bits above their low bytes, and r's masked off where it has such bits.
 template <class DF, class VF>
 HWY_INLINE auto pack_unorm8(DF df, VF r, VF g, VF b, VF a) {
   const hn::RebindToUnsigned<DF> du;
+  auto red = unorm8_low_byte(df, r);
+  if constexpr (!kTruncateInOne) red = hn::And(red, hn::Set(du, 0xFFu));
   return hn::Or(
-      hn::Or(hn::And(unorm8_low_byte(df, r), hn::Set(du, 0xFFu)),
-             hn::ShiftLeft<8>(unorm8_low_byte(df, g))),
+      hn::Or(red, hn::ShiftLeft<8>(unorm8_low_byte(df, g))),
       hn::Or(hn::ShiftLeft<16>(unorm8_low_byte(df, b)), hn::ShiftLeft<24>(unorm8_low_byte(df, a))));
 }
 
