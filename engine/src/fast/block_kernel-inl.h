@@ -772,11 +772,17 @@ HWY_INLINE void set_up_sub_blocks(TriangleState& st) {
   }
 }
 
-// An edge's change from a block's first pixel to each lane's pixel.
+// An edge's change from a lane group's first pixel to each lane's pixel, in column lane_col and
+// row kPixels.y of the group.
+template <class DI>
+HWY_INLINE hn::Vec<DI> lane_steps(DI di, hn::Vec<DI> lane_col, int32_t step_x, int32_t step_y) {
+  return hn::Add(hn::Mul(lane_col, hn::Set(di, step_x)),
+                 hn::Mul(hn::Load(di, kPixels.y), hn::Set(di, step_y)));
+}
+// The same for a block's lanes (row-major).
 template <class DI>
 HWY_INLINE hn::Vec<DI> lane_steps(DI di, int32_t step_x, int32_t step_y) {
-  return hn::Add(hn::Mul(hn::Load(di, kPixels.x), hn::Set(di, step_x)),
-                 hn::Mul(hn::Load(di, kPixels.y), hn::Set(di, step_y)));
+  return lane_steps(di, hn::Load(di, kPixels.x), step_x, step_y);
 }
 
 // RasterTriangle's general path, for triangles that are not small: out of line, with a state of
@@ -951,9 +957,19 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   const uint32_t samples = kMulti ? tc.samples : 1;
   TriangleState st;
   set_up_state<kMulti, true>(tc, t, st);
-  const auto lane_e0 = lane_steps(di, st.step_x[0], st.step_y[0]);
-  const auto lane_e1 = lane_steps(di, st.step_x[1], st.step_y[1]);
-  const auto lane_e2 = lane_steps(di, st.step_x[2], st.step_y[2]);
+  const int32_t px0 = st.px0, px1 = st.px1, py1 = st.py1;
+  const int32_t first_col = px0 & 7;
+  // Lane (row k, column c) is the pixel in column c of its block and row wy + k: of block a
+  // (the box's first) from column first_col on, of block b (the next) before it. So each
+  // block's lanes lie where its two rows lie in memory, in one aligned cache line (lanes in
+  // the box's order from its first column made each masked access span two lines). col: a
+  // lane's column counted from the box's first, (c - first_col) mod 8.
+  const auto col =
+      hn::And(hn::Sub(hn::Load(di, kPixels.x), hn::Set(di, first_col)), hn::Set(di, 7));
+  const auto row = hn::Load(di, kPixels.y);
+  const auto lane_e0 = lane_steps(di, col, st.step_x[0], st.step_y[0]);
+  const auto lane_e1 = lane_steps(di, col, st.step_x[1], st.step_y[1]);
+  const auto lane_e2 = lane_steps(di, col, st.step_x[2], st.step_y[2]);
   // Multisample: the edges' smallest thresholds over the samples, for a window's first test
   // (whether any sample of it is covered).
   constexpr int32_t kNone = std::numeric_limits<int32_t>::max();
@@ -962,16 +978,12 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
     for (int e = 0; e < 3; ++e)
       threshold_lo[e] = std::min(threshold_lo[e], st.edge_threshold[s][e]);
   }
-  const int32_t px0 = st.px0, px1 = st.px1, py1 = st.py1;
-  const int32_t first_col = px0 & 7;
-  const auto col = hn::Load(di, kPixels.x);
-  const auto row = hn::Load(di, kPixels.y);
   const auto cols_in = hn::Lt(col, hn::Set(di, px1 - px0 + 1));
   const auto in_a = hn::Lt(col, hn::Set(di, 8 - first_col));
   const auto in_a_f = hn::RebindMask(df, in_a);
   const auto in_b_f = hn::Not(in_a_f);
   // The lanes' pixel coordinates in their own block (fy without the window's row in it).
-  const auto fx = hn::ConvertTo(df, hn::And(hn::Add(col, hn::Set(di, first_col)), hn::Set(di, 7)));
+  const auto fx = hn::Load(df, kPixels.fx);
   const auto fy_lane = hn::Load(df, kPixels.fy);
 
   const int32_t wy0 = st.py0 & ~(rows - 1);
@@ -1012,8 +1024,8 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
     const size_t block_a =
         static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (window_bx - st.tile_bx));
     const size_t block_b = block_a + 1;
-    const size_t at_a = block_a * 64 + static_cast<size_t>(r * 8 + first_col);
-    const size_t at_b = block_b * 64 + static_cast<size_t>(r * 8 + first_col) - 8;
+    const size_t at_a = block_a * 64 + static_cast<size_t>(r * 8);
+    const size_t at_b = block_b * 64 + static_cast<size_t>(r * 8);
     // A plane's bases at the two blocks' first pixels, lane by lane (raster_block's).
     const auto bases = [&](float a_base, float b_base) {
       return two ? hn::IfThenElse(in_a_f, hn::Set(df, a_base), hn::Set(df, b_base))
