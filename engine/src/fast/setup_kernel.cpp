@@ -607,117 +607,112 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     // row: the first row's edge values in both halves, or with row_pairs the first row in the
     // low halves and the second in the high. least: each group's sample offsets, which the
     // general loop subtracts (row_pairs has none to subtract and forms none).
+    VS least[3][4 / kPerLane], row[3], step_x[3], step_y[3];
+    const uint32_t offset_groups = row_pairs ? 0 : groups;
+    for (int k = 0; k < 3; ++k) {
+      for (uint32_t j = 0; j < offset_groups; ++j) {
+        const auto offset = [&](uint32_t s) {
+          const V sx = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dx[s]} << shift));
+          const V sy = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dy[s]} << shift));
+          return hn::Sub(hn::Mul(edge_dy[k], sx), hn::Mul(edge_dx[k], sy));
+        };
+        const auto first = as_int(offset(kPerLane * j));
+        least[k][j] =
+            pair(first, kPerLane * j + 1 < samples ? as_int(offset(kPerLane * j + 1)) : first);
+      }
+      const auto at = as_int(edge_at[k]);
+      const auto sx = as_int(hn::Mul(edge_dy[k], hn::Set(d, scale)));
+      const auto sy = as_int(hn::Mul(edge_dx[k], hn::Set(d, scale)));
+      row[k] = row_pairs ? pair(at, hn::Add(at, sy)) : pair(at, at);
+      step_x[k] = pair(sx, sx);
+      step_y[k] = pair(sy, sy);
+    }
+    const auto pixel_samples = hn::Set(d64, (int64_t{1} << samples) - 1);
     auto mask_bits64 = hn::Zero(d64);  // sample_mask's bits
     auto last_bits64 = hn::Zero(d64);  // nine: the last pixel's samples, bit s
     auto any_bits64 = hn::Zero(d64);   // sample records: the pixels with a covered sample
-    // With no lane's box in the tests' 3x3, every mask stays 0: the tests are skipped, and so
-    // is the preparation of their values (`small`, most of whose boxes are wider: 0.96x to
-    // 0.98x the time at one sample).
-    if (!hn::AllFalse(d, box)) {
-      VS least[3][4 / kPerLane], row[3], step_x[3], step_y[3];
-      const uint32_t offset_groups = row_pairs ? 0 : groups;
+    // With no lane's box fitting, every mask stays 0: the tests are skipped (`small`, most of
+    // whose boxes are wider: 0.96x to 0.98x the time at one sample).
+    if (row_pairs && !hn::AllFalse(d, fits)) {
+      VS e_row[3], step_rows[3];  // the centres' edge values; two rows' step
       for (int k = 0; k < 3; ++k) {
-        for (uint32_t j = 0; j < offset_groups; ++j) {
-          const auto offset = [&](uint32_t s) {
-            const V sx = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dx[s]} << shift));
-            const V sy = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dy[s]} << shift));
-            return hn::Sub(hn::Mul(edge_dy[k], sx), hn::Mul(edge_dx[k], sy));
-          };
-          const auto first = as_int(offset(kPerLane * j));
-          least[k][j] =
-              pair(first, kPerLane * j + 1 < samples ? as_int(offset(kPerLane * j + 1)) : first);
-        }
-        const auto at = as_int(edge_at[k]);
-        const auto sx = as_int(hn::Mul(edge_dy[k], hn::Set(d, scale)));
-        const auto sy = as_int(hn::Mul(edge_dx[k], hn::Set(d, scale)));
-        row[k] = row_pairs ? pair(at, hn::Add(at, sy)) : pair(at, at);
-        step_x[k] = pair(sx, sx);
-        step_y[k] = pair(sy, sy);
+        e_row[k] = row[k];
+        step_rows[k] = hn::Add(step_y[k], step_y[k]);
       }
-      const auto pixel_samples = hn::Set(d64, (int64_t{1} << samples) - 1);
-      if (row_pairs) {
-        VS e_row[3], step_rows[3];  // the centres' edge values; two rows' step
-        for (int k = 0; k < 3; ++k) {
-          e_row[k] = row[k];
-          step_rows[k] = hn::Add(step_y[k], step_y[k]);
-        }
-        // Bits 0 and 32 (the two rows): the pixel is in the box.
-        const auto low = hn::Set(d64, 1), high = hn::Set(d64, int64_t{1} << 32);
-        hn::Vec<decltype(d64)> x_ok[3], y_ok[2];
+      // Bits 0 and 32 (the two rows): the pixel is in the box.
+      const auto low = hn::Set(d64, 1), high = hn::Set(d64, int64_t{1} << 32);
+      hn::Vec<decltype(d64)> x_ok[3], y_ok[2];
+      for (uint32_t px = 0; px < 3; ++px) {
+        x_ok[px] = hn::VecFromMask(
+            d64, hn::RebindMask(
+                     d64, hn::And(fits, hn::Le(hn::Set(d, static_cast<double>(px)), last_x))));
+      }
+      for (uint32_t r = 0; r < 2; ++r) {
+        y_ok[r] = hn::Or(
+            hn::IfThenElseZero(hn::RebindMask(d64, hn::Le(hn::Set(d, 2.0 * r), last_y)), low),
+            hn::IfThenElseZero(hn::RebindMask(d64, hn::Le(hn::Set(d, 2.0 * r + 1), last_y)), high));
+      }
+      for (uint32_t r = 0; r < 2; ++r) {
+        VS e[3] = {e_row[0], e_row[1], e_row[2]};
         for (uint32_t px = 0; px < 3; ++px) {
-          x_ok[px] = hn::VecFromMask(
-              d64, hn::RebindMask(
-                       d64, hn::And(fits, hn::Le(hn::Set(d, static_cast<double>(px)), last_x))));
+          // Negative where outside an edge: each half's sign bit, at bits 0 (row 2r) and 32
+          // (row 2r + 1) after the shift.
+          const auto outside = hn::Or(hn::Or(e[0], e[1]), e[2]);
+          const auto sign =
+              hn::ShiftRight<31>(hn::BitCast(hn::RebindToUnsigned<decltype(d64)>(), outside));
+          const auto covered = hn::AndNot(hn::BitCast(d64, sign), hn::And(x_ok[px], y_ok[r]));
+          mask_bits64 =
+              hn::Or(mask_bits64, hn::ShiftLeftSame(covered, static_cast<int>(6 * r + px)));
+          for (int k = 0; k < 3; ++k)
+            e[k] = hn::Sub(e[k], step_x[k]);
         }
-        for (uint32_t r = 0; r < 2; ++r) {
-          y_ok[r] = hn::Or(
-              hn::IfThenElseZero(hn::RebindMask(d64, hn::Le(hn::Set(d, 2.0 * r), last_y)), low),
-              hn::IfThenElseZero(hn::RebindMask(d64, hn::Le(hn::Set(d, 2.0 * r + 1), last_y)),
-                                 high));
-        }
-        for (uint32_t r = 0; r < 2; ++r) {
-          VS e[3] = {e_row[0], e_row[1], e_row[2]};
-          for (uint32_t px = 0; px < 3; ++px) {
-            // Negative where outside an edge: each half's sign bit, at bits 0 (row 2r) and 32
-            // (row 2r + 1) after the shift.
-            const auto outside = hn::Or(hn::Or(e[0], e[1]), e[2]);
-            const auto sign =
-                hn::ShiftRight<31>(hn::BitCast(hn::RebindToUnsigned<decltype(d64)>(), outside));
-            const auto covered = hn::AndNot(hn::BitCast(d64, sign), hn::And(x_ok[px], y_ok[r]));
-            mask_bits64 =
-                hn::Or(mask_bits64, hn::ShiftLeftSame(covered, static_cast<int>(6 * r + px)));
-            for (int k = 0; k < 3; ++k)
-              e[k] = hn::Sub(e[k], step_x[k]);
+        for (int k = 0; k < 3; ++k)
+          e_row[k] = hn::Add(e_row[k], step_rows[k]);
+      }
+      // Row 2r + 1's bits from 32 + 6 r + px down to 3 + 6 r + px.
+      mask_bits64 =
+          hn::Or(hn::And(mask_bits64, hn::Set(d64, 0xFFFFFFFF)), hn::ShiftRight<29>(mask_bits64));
+    } else if (!row_pairs) {
+      // The tests stop at the first row, and in a row at the first column, that lies in no
+      // lane's box: neither do the ones after it, and their pixels' masks would all be 0. (At
+      // four samples no lane's box has a third row in 64% of `grid`'s vectors, nor a third
+      // column in 76%.)
+      for (uint32_t py = 0; py < 3; ++py) {
+        const auto row_in_box =
+            hn::And(nine ? box : fits, hn::Le(hn::Set(d, static_cast<double>(py)), last_y));
+        if (hn::AllFalse(d, row_in_box)) break;
+        VS e[3] = {row[0], row[1], row[2]};
+        for (uint32_t px = 0, pixel = py * 3; px < 3 && pixel < (nine ? 9 : setup_pixels);
+             ++px, ++pixel) {
+          const auto in_box =
+              hn::And(row_in_box, hn::Le(hn::Set(d, static_cast<double>(px)), last_x));
+          if (hn::AllFalse(d, in_box)) break;
+          auto missed = hn::Zero(d64);  // bit s: sample s outside an edge
+          for (uint32_t j = 0; j < groups; ++j) {
+            // Negative where the sample is outside an edge.
+            const auto outside =
+                hn::Or(hn::Or(hn::Sub(e[0], least[0][j]), hn::Sub(e[1], least[1][j])),
+                       hn::Sub(e[2], least[2][j]));
+            missed = hn::Or(missed,
+                            hn::ShiftLeftSame(sign_bits(outside), static_cast<int>(kPerLane * j)));
+          }
+          const auto pixel_mask =
+              hn::IfThenElseZero(hn::RebindMask(d64, in_box), hn::AndNot(missed, pixel_samples));
+          if (pixel < setup_pixels) {
+            mask_bits64 = hn::Or(mask_bits64,
+                                 hn::ShiftLeftSame(pixel_mask, static_cast<int>(pixel * samples)));
+          } else {
+            last_bits64 = pixel_mask;
+          }
+          if (ctx.sample_records) {
+            any_bits64 = hn::Or(any_bits64, hn::IfThenElseZero(hn::Ne(pixel_mask, hn::Zero(d64)),
+                                                               hn::Set(d64, int64_t{1} << pixel)));
           }
           for (int k = 0; k < 3; ++k)
-            e_row[k] = hn::Add(e_row[k], step_rows[k]);
+            e[k] = hn::Sub(e[k], step_x[k]);
         }
-        // Row 2r + 1's bits from 32 + 6 r + px down to 3 + 6 r + px.
-        mask_bits64 =
-            hn::Or(hn::And(mask_bits64, hn::Set(d64, 0xFFFFFFFF)), hn::ShiftRight<29>(mask_bits64));
-      } else {
-        // The tests stop at the first row, and in a row at the first column, that lies in no
-        // lane's box: neither do the ones after it, and their pixels' masks would all be 0. (At
-        // four samples no lane's box has a third row in 64% of `grid`'s vectors, nor a third
-        // column in 76%.)
-        for (uint32_t py = 0; py < 3; ++py) {
-          const auto row_in_box =
-              hn::And(nine ? box : fits, hn::Le(hn::Set(d, static_cast<double>(py)), last_y));
-          if (hn::AllFalse(d, row_in_box)) break;
-          VS e[3] = {row[0], row[1], row[2]};
-          for (uint32_t px = 0, pixel = py * 3; px < 3 && pixel < (nine ? 9 : setup_pixels);
-               ++px, ++pixel) {
-            const auto in_box =
-                hn::And(row_in_box, hn::Le(hn::Set(d, static_cast<double>(px)), last_x));
-            if (hn::AllFalse(d, in_box)) break;
-            auto missed = hn::Zero(d64);  // bit s: sample s outside an edge
-            for (uint32_t j = 0; j < groups; ++j) {
-              // Negative where the sample is outside an edge.
-              const auto outside =
-                  hn::Or(hn::Or(hn::Sub(e[0], least[0][j]), hn::Sub(e[1], least[1][j])),
-                         hn::Sub(e[2], least[2][j]));
-              missed = hn::Or(
-                  missed, hn::ShiftLeftSame(sign_bits(outside), static_cast<int>(kPerLane * j)));
-            }
-            const auto pixel_mask =
-                hn::IfThenElseZero(hn::RebindMask(d64, in_box), hn::AndNot(missed, pixel_samples));
-            if (pixel < setup_pixels) {
-              mask_bits64 = hn::Or(
-                  mask_bits64, hn::ShiftLeftSame(pixel_mask, static_cast<int>(pixel * samples)));
-            } else {
-              last_bits64 = pixel_mask;
-            }
-            if (ctx.sample_records) {
-              any_bits64 =
-                  hn::Or(any_bits64, hn::IfThenElseZero(hn::Ne(pixel_mask, hn::Zero(d64)),
-                                                        hn::Set(d64, int64_t{1} << pixel)));
-            }
-            for (int k = 0; k < 3; ++k)
-              e[k] = hn::Sub(e[k], step_x[k]);
-          }
-          for (int k = 0; k < 3; ++k)
-            row[k] = hn::Add(row[k], step_y[k]);
-        }
+        for (int k = 0; k < 3; ++k)
+          row[k] = hn::Add(row[k], step_y[k]);
       }
     }
     sample_mask = hn::ConvertTo(d, mask_bits64);  // below 2^32: exact
