@@ -143,6 +143,34 @@ Scene soup(uint32_t seed, int count, float area, bool flat_depth, bool perspecti
   return s;
 }
 
+// Thin triangles about three pixels tall and one or two wide, at random places, depths and
+// colours, w varying per vertex: with the samples' reach their bounding boxes are up to 3 pixels
+// wide and 4 high, the boxes of the largest sample records. With flat_depth, depth and w as
+// soup's.
+Scene tall_soup(uint32_t seed, int count, bool flat_depth) {
+  Scene s;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < count; ++i) {
+    const float cx = (u(rng) * 1.1f - 0.05f) * static_cast<float>(s.width);
+    const float cy = (u(rng) * 1.1f - 0.05f) * static_cast<float>(s.height);
+    const float height = 2.4f + 1.0f * u(rng), width = 0.4f + 1.6f * u(rng);
+    const float x[3] = {cx + (u(rng) - 0.5f) * width, cx + (u(rng) - 0.5f) * width,
+                        cx + (u(rng) - 0.5f) * width};
+    const float y[3] = {cy - 0.5f * height, cy + (u(rng) - 0.5f) * height, cy + 0.5f * height};
+    float z[3], w[3], c[3][4];
+    for (int k = 0; k < 3; ++k) {
+      z[k] = flat_depth ? static_cast<float>(i + 1) / 32768.0f : u(rng);
+      w[k] = flat_depth ? 1.0f : 0.25f + 4.0f * u(rng);
+      for (int ch = 0; ch < 4; ++ch)
+        c[k][ch] = u(rng);
+    }
+    s.add(x, y, z, w, c);
+  }
+  if (flat_depth) s.pipeline.depth_compare = CompareOp::kAlways;
+  return s;
+}
+
 void expect_same_coverage(const Result& fast, const Result& ref, const std::string& what) {
   ASSERT_EQ(fast.depth.size(), ref.depth.size());
   size_t mismatches = 0, first = 0;
@@ -480,6 +508,36 @@ TEST(FastEngine, EveryCompareOpMatchesTheReferenceOnTinyAndSmallTriangles) {
         });
       }
     }
+  }
+}
+
+TEST(FastEngine, SampleRecordsOfFourRowBoxesMatchTheReferenceAndTheFullSetups) {
+  // Boxes up to 3 pixels wide and 4 high (tall_soup) become sample records when at most four
+  // of their pixels have a covered sample: coverage as the reference's, and the same depth
+  // bits, colour bytes and sample counters as full setups for every triangle.
+  for (uint32_t samples : {2u, 4u}) {
+    SCOPED_TRACE(std::to_string(samples) + " samples");
+    Scene flat = tall_soup(90 + samples, 6000, true);
+    flat.samples = samples;
+    const Result ref = render(flat, Backend::kReference);
+    Scene s = tall_soup(90 + samples, 6000, false);
+    s.samples = samples;
+    for_each_config([&](const Config& config) {
+      expect_same_coverage(render(flat, Backend::kFast, config), ref, "records");
+      const Result records = render(s, Backend::kFast, config);
+      const Result setups = render(s, Backend::kFast, config, kDefaultBinMemoryBudget, true, true,
+                                   64, 8, false, /*records=*/false);
+      ASSERT_GT(records.counters.samples_passed, 2000u * samples);
+      EXPECT_EQ(records.counters.bin_references, setups.counters.bin_references);
+      EXPECT_EQ(records.counters.samples_covered, setups.counters.samples_covered);
+      EXPECT_EQ(records.counters.samples_passed, setups.counters.samples_passed);
+      EXPECT_EQ(records.counters.pixels_shaded, setups.counters.pixels_shaded);
+      ASSERT_EQ(records.depth.size(), setups.depth.size());
+      EXPECT_EQ(std::memcmp(records.depth.data(), setups.depth.data(),
+                            records.depth.size() * sizeof(float)),
+                0);
+      EXPECT_EQ(records.rgba8, setups.rgba8);
+    });
   }
 }
 

@@ -63,6 +63,25 @@ Draw random_draw(uint32_t seed, int count, bool wide_w = false) {
   return d;
 }
 
+// Thin triangles about three pixels tall and one or two wide (boxes of up to 3x4 pixels with
+// the samples' reach), w varying per vertex, appended to `d`.
+void add_tall_triangles(Draw& d, uint32_t seed, int count) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < count; ++i) {
+    const float cx = u(rng) * kWidthF, cy = u(rng) * kHeightF;
+    const float height = 2.4f + 1.0f * u(rng), width = 0.4f + 1.6f * u(rng);
+    const float ys[3] = {cy - 0.5f * height, cy + (u(rng) - 0.5f) * height, cy + 0.5f * height};
+    for (int k = 0; k < 3; ++k) {
+      const float x = cx + (u(rng) - 0.5f) * width, w = 0.25f + 4.0f * u(rng);
+      d.positions.push_back(
+          {(2.0f * x / kWidthF - 1.0f) * w, (1.0f - 2.0f * ys[k] / kHeightF) * w, u(rng) * w, w});
+      for (int c = 0; c < 4; ++c)
+        d.colors.push_back(u(rng));
+    }
+  }
+}
+
 struct Output {
   SetupList setups;
   PixelList pixels;
@@ -190,6 +209,48 @@ void expect_same_bytes_on_every_target(const Draw& draw, bool expect_clipped) {
 
 TEST(SetupKernel, EveryCompiledTargetWritesTheSameBytes) {
   expect_same_bytes_on_every_target(random_draw(4242, 6000), true);
+}
+
+// Sample records of boxes four pixels high: made on every target alike (with the rest of
+// random_draw), and common among thin triangles three pixels tall.
+TEST(SetupKernel, FourRowBoxesBecomeSampleRecords) {
+  Draw draw = random_draw(4343, 4000);
+  add_tall_triangles(draw, 4444, 4000);
+  expect_same_bytes_on_every_target(draw, true);
+
+  DrawInput input;
+  input.positions = draw.positions;
+  input.attributes = draw.colors;
+  input.attribute_count = 4;
+  PipelineState pipeline;
+  for (uint32_t samples : {2u, 4u}) {
+    SCOPED_TRACE(std::to_string(samples) + " samples");
+    SetupContext ctx;
+    ctx.width = kWidth;
+    ctx.height = kHeight;
+    ctx.subpixel_bits = 8;
+    ctx.attribute_count = 4;
+    ctx.pipeline = &pipeline;
+    ctx.guard_band = GuardBand::for_viewport(kWidth, kHeight);
+    ctx.bin_tile_log2 = kTileLog2;
+    ctx.set_sample_pattern(sample_pattern(samples));
+    ctx.sample_records = true;
+    const Output out = set_up(setup_kernel(hwy::SupportedTargets() & -hwy::SupportedTargets()), ctx,
+                              input, draw.positions.size() / 3);
+    size_t four_rows = 0;
+    for (const SampleRecord& r : out.samples) {
+      const uint32_t height = ((r.shape >> 5) & 3u) + 1;
+      four_rows += height == 4;
+      // Every pixel a record holds lies in its box.
+      for (uint32_t i = 0; i < (r.shape & 7u); ++i) {
+        const uint32_t place = (r.offsets >> (4 * i)) & 15u;
+        EXPECT_LE(place & 3u, (r.shape >> 3) & 3u);
+        EXPECT_LT(place >> 2, height);
+        EXPECT_NE((r.coverage >> (4 * i)) & 15u, 0u);
+      }
+    }
+    EXPECT_GT(four_rows, 500u);
+  }
 }
 
 // Targets with a fused multiply-add divide by w once per vertex and correct the products

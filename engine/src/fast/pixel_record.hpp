@@ -38,16 +38,17 @@ static_assert(sizeof(PixelRecord) == 32 && std::is_trivially_default_constructib
 // The most pixels a pixel record holds.
 inline constexpr uint32_t kPixelRecordPixels = 3;
 
-// For each set of covered pixels of a 3x3 box (bit (y - y0) * 3 + (x - x0)): the places
-// (y - y0) * 4 + (x - x0) of its first `slots` pixels in row-major order, `bits` bits each
-// (0 for slots past the last), and in the top byte how many pixels the set holds. The
+// For each set of covered pixels of a box of kPixels / 3 rows of 3 (bit (y - y0) * 3 + (x - x0)):
+// the places (y - y0) * 4 + (x - x0) of its first `slots` pixels in row-major order, `bits` bits
+// each (0 for slots past the last), and in the top byte how many pixels the set holds. The
 // vectorized setup looks its lanes' coverage up here instead of tracking the first pixels
 // while testing them.
-constexpr std::array<uint32_t, 512> first_pixels_table(uint32_t slots, uint32_t bits) {
-  std::array<uint32_t, 512> table{};
-  for (uint32_t mask = 0; mask < 512; ++mask) {
+template <uint32_t kPixels>
+constexpr std::array<uint32_t, (1u << kPixels)> first_pixels_table(uint32_t slots, uint32_t bits) {
+  std::array<uint32_t, (1u << kPixels)> table{};
+  for (uint32_t mask = 0; mask < table.size(); ++mask) {
     uint32_t entry = 0, count = 0;
-    for (uint32_t pixel = 0; pixel < 9; ++pixel) {
+    for (uint32_t pixel = 0; pixel < kPixels; ++pixel) {
       if ((mask & (1u << pixel)) == 0) continue;
       if (count < slots) entry |= ((pixel / 3) * 4 + pixel % 3) << (bits * count);
       ++count;
@@ -58,7 +59,8 @@ constexpr std::array<uint32_t, 512> first_pixels_table(uint32_t slots, uint32_t 
 }
 
 // The pixel records' entries: PixelRecord::offset's bytes.
-inline constexpr std::array<uint32_t, 512> kFirstPixels = first_pixels_table(kPixelRecordPixels, 8);
+inline constexpr std::array<uint32_t, 512> kFirstPixels =
+    first_pixels_table<9>(kPixelRecordPixels, 8);
 
 // A bin reference with this bit set names a pixel record (one sample) or a sample record (two
 // or four); without it, a TriangleSetup.
@@ -66,16 +68,16 @@ inline constexpr uint32_t kPixelRecordBit = 0x80000000u;
 
 using PixelList = detail::UninitializedVector<PixelRecord>;
 
-// Sample records, the multisample counterpart: at two or four samples per pixel, a triangle
-// whose box is at most 3x3 pixels and which has covered samples in at most kSampleRecordPixels
-// pixels, none beyond its horizon at the pixel centre, is stored as its pixels' sample masks,
-// depth planes and colours in one 64-byte line instead of a 160-byte TriangleSetup. The raster
-// phase tests each covered sample's depth, formed as the kernels form it from the same float
-// values, and writes the colour shaded once per pixel.
+// Sample records, the multisample counterpart: at two or four samples per pixel, a small
+// triangle whose box is at most 3 pixels wide and 4 high and which has covered samples in at most
+// kSampleRecordPixels pixels, none beyond its horizon at the pixel centre, is stored as its pixels'
+// sample masks, depth planes and colours in one 64-byte line instead of a 160-byte TriangleSetup.
+// The raster phase tests each covered sample's depth, formed as the kernels form it from the same
+// float values, and writes the colour shaded once per pixel.
 struct SampleRecord {
   uint16_t x0, y0;  // the bounding box's first pixel
   // Bits 0-2: the pixels with a covered sample (1 to 4); bits 3-4 and 5-6: the box's width
-  // and height in pixels, less one (0 to 2).
+  // and height in pixels, less one (0 to 2 and 0 to 3).
   uint8_t shape;
   uint8_t unused0;
   // Pixel i's place in the box, (y - y0) * 4 + (x - x0), in bits 4i to 4i + 3, in row-major
@@ -95,9 +97,12 @@ static_assert(sizeof(SampleRecord) == 64 &&
 // The most pixels a sample record holds.
 inline constexpr uint32_t kSampleRecordPixels = 4;
 
+// The boxes a sample record may have: at most 3 pixels wide and 4 high, 12 pixels.
+inline constexpr uint32_t kSampleRecordBoxPixels = 12;
+
 // The sample records' entries: SampleRecord::offsets.
-inline constexpr std::array<uint32_t, 512> kFirstSamplePixels =
-    first_pixels_table(kSampleRecordPixels, 4);
+inline constexpr std::array<uint32_t, (1u << kSampleRecordBoxPixels)> kFirstSamplePixels =
+    first_pixels_table<kSampleRecordBoxPixels>(kSampleRecordPixels, 4);
 
 using SampleList = detail::UninitializedVector<SampleRecord>;
 

@@ -284,13 +284,13 @@ HWY_INLINE void PixelValues(D d, size_t l0, VI first, Out& out) {
 }
 
 // The sample records of the lanes from l0 (two or four samples), whose pixels with a covered
-// sample `first` holds as a kFirstSamplePixels entry and whose covered samples `mask` holds
-// as TriangleSetup::sample_bits does, with a 3x3 box's last pixel's in `last` at four
-// samples: SampleRecord's bytes in Out::sample_words. Returns the lanes
+// sample `first` holds as a kFirstSamplePixels entry and whose covered samples `low` and `high`
+// hold as bits 0-31 and 32-63 of bit (py * 3 + px) * samples + s: SampleRecord's bytes in
+// Out::sample_words. Returns the lanes
 // that cannot be sample records: a pixel's centre beyond the horizon, where the colour depends
 // on which sample passes first.
 template <class D, class VI, class VU>
-HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU mask, VU last, uint32_t samples,
+HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU low, VU high, uint32_t samples,
                              Out& out) {
   const hn::Rebind<int32_t, D> di;
   const hn::Rebind<uint32_t, D> du;
@@ -304,14 +304,15 @@ HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU mask, VU last, uint32_
   const auto pixel_samples = hn::Set(du, (1u << samples) - 1);
   const auto beyond = RecordValues<kSampleRecordPixels, 4>(
       d, l0, first, out, [&](uint32_t i, auto place, auto z_base, auto, auto packed) {
-        // The pixel's samples: bits from (y * 3 + x) * samples of the mask, or `last` for a
-        // pixel past its 32 bits.
+        // The pixel's samples: bits from (y * 3 + x) * samples of low, or of high past 31.
         const auto pixel = hn::Add(hn::Mul(hn::ShiftRight<2>(place), hn::Set(di, 3)),
                                    hn::And(place, hn::Set(di, 3)));
         const auto bit = hn::Mul(pixel, hn::Set(di, static_cast<int32_t>(samples)));
-        const auto past = hn::RebindMask(du, hn::Gt(bit, hn::Set(di, 31)));
-        const auto shift = hn::IfThenZeroElse(past, hn::BitCast(du, bit));
-        const auto cov = hn::IfThenElse(past, last, hn::And(mask >> shift, pixel_samples));
+        const auto past = hn::Gt(bit, hn::Set(di, 31));
+        const auto shift =
+            hn::BitCast(du, hn::IfThenElse(past, hn::Sub(bit, hn::Set(di, 32)), bit));
+        const auto cov =
+            hn::And(hn::IfThenElse(hn::RebindMask(du, past), high, low) >> shift, pixel_samples);
         coverage = hn::Or(coverage, hn::ShiftLeftSame(cov, static_cast<int>(4 * i)));
         z_base_bits[i] = hn::BitCast(du, z_base);
         rgba8[i] = packed;
@@ -336,11 +337,11 @@ HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU mask, VU last, uint32_
   return hn::Lt(hn::PromoteTo(d, beyond_i), hn::Zero(d));
 }
 
-// table[mask] for each lane's mask (a double lane holding an integer from 0 to 511). When every
+// table[mask] for each lane's mask (a double lane holding an index of the table). When every
 // mask is 0 (no lane has a record pixel: most vectors of `small`), table[0] in every lane,
 // without the gather.
-template <class D, class DI>
-HWY_INLINE hn::Vec<DI> table_entries(D d, DI di, const std::array<uint32_t, 512>& table,
+template <class D, class DI, size_t kEntries>
+HWY_INLINE hn::Vec<DI> table_entries(D d, DI di, const std::array<uint32_t, kEntries>& table,
                                      hn::Vec<D> mask) {
   if (hn::AllFalse(d, hn::Gt(mask, hn::Zero(d)))) {
     return hn::Set(di, static_cast<int32_t>(table[0]));
@@ -538,33 +539,41 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
   const hn::Rebind<int32_t, decltype(d)> di;
   const hn::Rebind<uint32_t, decltype(d)> du;
   auto first_pixels = hn::Zero(di);
-  auto sample_mask_bits = hn::Zero(du);  // sample records: the mask's bits
-  auto last_pixel_bits = hn::Zero(du);   // and the last pixel's, where they pass 32 bits
-  auto any_pixel = hn::Lt(zero, zero);   // the lanes that become pixel or sample records
+  // Sample records: the tested pixels' covered samples, bit (py * 3 + px) * samples + s, as
+  // bits 0-31 and 32-63.
+  auto record_low = hn::Zero(du), record_high = hn::Zero(du);
+  auto any_pixel = hn::Lt(zero, zero);  // the lanes that become pixel or sample records
   if (sample_bits) {
     // Sample s of a box pixel is inside edge k when E(centre) + a dx_s + b dy_s >= 0, with
     // a = -dy, b = dx: when E(centre) - (dy dx_s - dx dy_s) is not negative. The setup's pixels
-    // are those whose bits fit 32: every 3x3 one at one and two samples, all but the last at
-    // four. Sample records take every 3x3 box: at four samples the last pixel's samples are
-    // kept apart (last_mask).
+    // (TriangleSetup::sample_bits) are those whose bits fit 32: every 3x3 one at one and two
+    // samples, all but the last at four. Sample records take boxes of up to 3 pixels across
+    // and 4 down: every pixel of those is tested, its samples' bits kept apart (record_bits64).
     //
     // Only small triangles (every edge under 32 px: TriangleSetup::small) are tested, in 32-bit
     // lanes, two samples of a triangle side by side in its 64-bit lane (at one sample, two
     // pixels: one row and the next, below). Their edges' |dx|, |dy|
-    // are below 2^(bits + 5) and every pixel centre of the loop lies within 3 px of their
-    // vertices' bounding box (under 32 px), so |E| < 2 * 2^(bits + 5) * 35 * 2^bits < 2^28 and
+    // are below 2^(bits + 5) and every pixel centre of the loop lies within 4 px of their
+    // vertices' bounding box (under 32 px), so |E| < 2 * 2^(bits + 5) * 36 * 2^bits < 2^28 and
     // |dy dx_s - dx dy_s| < 2 * 2^(bits + 5) * 2^(bits - 1) <= 2^21: the difference is exact
     // in int32, and its sign bit says whether the sample is outside. Other boxes of at most 3x3
-    // pixels (large triangles cut to a corner of the screen) keep sample_bits 0 and no record:
-    // the kernel tests their edges.
+    // or 3x4 pixels (large triangles cut to a corner of the screen) keep sample_bits 0 and no
+    // record: the kernel tests their edges.
     const uint32_t samples = ctx.samples;
     const uint32_t setup_pixels = std::min(9u, 32u / samples);
-    const bool nine = ctx.sample_records && setup_pixels < 9;
     const V last_x = hn::Sub(bx1, bx0), last_y = hn::Sub(by1, by0);  // in the box, from 0
     const V two = hn::Set(d, 2.0);
     const auto box = hn::And(hn::And(hn::Le(last_x, two), hn::Le(last_y, two)), small);
     auto fits = box;  // TriangleSetup::sample_bits holds the box's samples
     if (setup_pixels < 9) fits = hn::AndNot(hn::And(hn::Eq(last_x, two), hn::Eq(last_y, two)), box);
+    // The boxes whose samples are tested: with sample records, also boxes of four rows (of at
+    // most three pixels), which become records when at most kSampleRecordPixels pixels have a
+    // covered sample (their pixels lie within 4 px of the vertices' box: the bound above holds).
+    const auto tested =
+        ctx.sample_records
+            ? hn::And(hn::And(hn::Le(last_x, two), hn::Le(last_y, hn::Set(d, 3.0))), small)
+            : fits;
+    const uint32_t tested_pixels = ctx.sample_records ? kSampleRecordBoxPixels : setup_pixels;
     // Lanes of two samples each: 32-bit lanes, the low 32 bits of lo's and hi's box lanes side
     // by side (0 in the other lanes). Targets with one lane per vector (HWY_SCALAR) test one
     // sample per 64-bit lane.
@@ -574,7 +583,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
         ds;
     const hn::RebindToUnsigned<decltype(ds)> dus;
     using VS = hn::Vec<decltype(ds)>;
-    const auto as_int = [&](V v) { return small_to_int64(d64, hn::IfThenElseZero(box, v)); };
+    // A tested lane's value as an integer (0 in the other lanes, whose values may not fit).
+    const auto as_int = [&](V v) { return small_to_int64(d64, hn::IfThenElseZero(tested, v)); };
     const auto pair = [&](auto lo, auto hi) {
       if constexpr (kPerLane == 1) {
         (void)hi;
@@ -603,7 +613,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     // general loop sets (setup: 3.7% faster on `grid`, 1.5% on `tiny`).
     // The one sample is the pixel centre there, so no sample offsets are formed.
     const bool row_pairs =
-        kPerLane == 2 && samples == 1 && ctx.centre_sample_only() && !nine && !ctx.sample_records;
+        kPerLane == 2 && samples == 1 && ctx.centre_sample_only() && !ctx.sample_records;
     // row: the first row's edge values in both halves, or with row_pairs the first row in the
     // low halves and the second in the high. least: each group's sample offsets, which the
     // general loop subtracts (row_pairs has none to subtract and forms none).
@@ -628,9 +638,9 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
       step_y[k] = pair(sy, sy);
     }
     const auto pixel_samples = hn::Set(d64, (int64_t{1} << samples) - 1);
-    auto mask_bits64 = hn::Zero(d64);  // sample_mask's bits
-    auto last_bits64 = hn::Zero(d64);  // nine: the last pixel's samples, bit s
-    auto any_bits64 = hn::Zero(d64);   // sample records: the pixels with a covered sample
+    auto mask_bits64 = hn::Zero(d64);    // sample_mask's bits
+    auto record_bits64 = hn::Zero(d64);  // sample records: every tested pixel's, as sample_mask's
+    auto any_bits64 = hn::Zero(d64);     // sample records: the pixels with a covered sample
     // With no lane's box fitting, every mask stays 0: the tests are skipped (`small`, most of
     // whose boxes are wider: 0.96x to 0.98x the time at one sample).
     if (row_pairs && !hn::AllFalse(d, fits)) {
@@ -677,13 +687,12 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
       // lane's box: neither do the ones after it, and their pixels' masks would all be 0. (At
       // four samples no lane's box has a third row in 64% of `grid`'s vectors, nor a third
       // column in 76%.)
-      for (uint32_t py = 0; py < 3; ++py) {
+      for (uint32_t py = 0; py * 3 < tested_pixels; ++py) {
         const auto row_in_box =
-            hn::And(nine ? box : fits, hn::Le(hn::Set(d, static_cast<double>(py)), last_y));
+            hn::And(tested, hn::Le(hn::Set(d, static_cast<double>(py)), last_y));
         if (hn::AllFalse(d, row_in_box)) break;
         VS e[3] = {row[0], row[1], row[2]};
-        for (uint32_t px = 0, pixel = py * 3; px < 3 && pixel < (nine ? 9 : setup_pixels);
-             ++px, ++pixel) {
+        for (uint32_t px = 0, pixel = py * 3; px < 3 && pixel < tested_pixels; ++px, ++pixel) {
           const auto in_box =
               hn::And(row_in_box, hn::Le(hn::Set(d, static_cast<double>(px)), last_x));
           if (hn::AllFalse(d, in_box)) break;
@@ -698,13 +707,10 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
           }
           const auto pixel_mask =
               hn::IfThenElseZero(hn::RebindMask(d64, in_box), hn::AndNot(missed, pixel_samples));
-          if (pixel < setup_pixels) {
-            mask_bits64 = hn::Or(mask_bits64,
-                                 hn::ShiftLeftSame(pixel_mask, static_cast<int>(pixel * samples)));
-          } else {
-            last_bits64 = pixel_mask;
-          }
+          const auto pixel_bits = hn::ShiftLeftSame(pixel_mask, static_cast<int>(pixel * samples));
+          if (pixel < setup_pixels) mask_bits64 = hn::Or(mask_bits64, pixel_bits);
           if (ctx.sample_records) {
+            record_bits64 = hn::Or(record_bits64, pixel_bits);
             any_bits64 = hn::Or(any_bits64, hn::IfThenElseZero(hn::Ne(pixel_mask, hn::Zero(d64)),
                                                                hn::Set(d64, int64_t{1} << pixel)));
           }
@@ -716,11 +722,11 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
       }
     }
     sample_mask = hn::ConvertTo(d, mask_bits64);  // below 2^32: exact
-    const V last_mask = hn::ConvertTo(d, last_bits64);
     const V any_mask = hn::ConvertTo(d, any_bits64);
-    // Full 3x3 boxes at four samples are binned as without records: with a setup whose
-    // sample_bits are 0, unless they become sample records.
-    const V fit_mask = nine ? hn::IfThenElseZero(fits, sample_mask) : sample_mask;
+    // Only boxes that fit keep sample_bits: the others tested (full 3x3 boxes at four samples,
+    // boxes of four rows) are binned as without records, with a setup whose sample_bits are 0,
+    // unless they become sample records.
+    const V fit_mask = ctx.sample_records ? hn::IfThenElseZero(fits, sample_mask) : sample_mask;
     any_sample = hn::And(any_sample, hn::Or(hn::Not(fits), hn::Gt(fit_mask, zero)));
     if (samples == 1) {
       // Pixel records for the lanes with 1 to kPixelRecordPixels covered pixels (the mask
@@ -738,8 +744,11 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     if (ctx.sample_records) {
       // Sample records for the lanes with covered samples in 1 to kSampleRecordPixels pixels,
       // looked up as at one sample.
-      sample_mask_bits = hn::BitCast(du, hn::DemoteTo(di, as_signed(sample_mask)));
-      last_pixel_bits = hn::BitCast(du, hn::DemoteTo(di, last_mask));
+      // Bits 0-31 and 32-63 of the tested pixels' (pixels do not straddle them).
+      const V low = hn::ConvertTo(d, hn::And(record_bits64, hn::Set(d64, 0xFFFFFFFF)));
+      const V high = hn::ConvertTo(d, hn::ShiftRight<32>(record_bits64));
+      record_low = hn::BitCast(du, hn::DemoteTo(di, as_signed(low)));
+      record_high = hn::BitCast(du, hn::DemoteTo(di, high));
       first_pixels = table_entries(d, di, kFirstSamplePixels, any_mask);
       const V found = hn::PromoteTo(d, hn::ShiftRight<24>(first_pixels));
       any_pixel = hn::And(hn::Gt(found, zero),
@@ -788,8 +797,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
       PixelValues(d, l0, first_pixels, out);
     } else {
       any_pixel = hn::AndNot(
-          SampleValues(d, l0, first_pixels, sample_mask_bits, last_pixel_bits, ctx.samples, out),
-          any_pixel);
+          SampleValues(d, l0, first_pixels, record_low, record_high, ctx.samples, out), any_pixel);
     }
   }
   out.pixel |= mask_bits(d, any_pixel) << l0;
