@@ -122,10 +122,11 @@ bool same_pixels(const PixelRecord& a, const PixelRecord& b) {
 }
 
 bool same_pixels(const SampleRecord& a, const SampleRecord& b) {
-  const uint32_t n = a.shape & 7u;
+  const uint32_t n = a.shape_places & 7u;
   const uint32_t nibbles = (1u << (4 * n)) - 1;
-  bool same = a.x0 == b.x0 && a.y0 == b.y0 && a.shape == b.shape &&
-              (a.offsets & nibbles) == (b.offsets & nibbles) &&
+  bool same = a.x0 == b.x0 && a.y0 == b.y0 &&
+              (a.shape_places & 0xFFu) == (b.shape_places & 0xFFu) &&
+              ((a.shape_places >> 8) & nibbles) == ((b.shape_places >> 8) & nibbles) &&
               (a.coverage & nibbles) == (b.coverage & nibbles) &&
               std::memcmp(&a.z_dx, &b.z_dx, sizeof(float)) == 0 &&
               std::memcmp(&a.z_dy, &b.z_dy, sizeof(float)) == 0;
@@ -239,12 +240,13 @@ TEST(SetupKernel, FourRowBoxesBecomeSampleRecords) {
                               input, draw.positions.size() / 3);
     size_t four_rows = 0;
     for (const SampleRecord& r : out.samples) {
-      const uint32_t height = ((r.shape >> 5) & 3u) + 1;
+      const uint32_t shape = r.shape_places & 0xFFu;
+      const uint32_t height = ((shape >> 5) & 3u) + 1;
       four_rows += height == 4;
       // Every pixel a record holds lies in its box.
-      for (uint32_t i = 0; i < (r.shape & 7u); ++i) {
-        const uint32_t place = (r.offsets >> (4 * i)) & 15u;
-        EXPECT_LE(place & 3u, (r.shape >> 3) & 3u);
+      for (uint32_t i = 0; i < (shape & 7u); ++i) {
+        const uint32_t place = (r.shape_places >> (8 + 4 * i)) & 15u;
+        EXPECT_LE(place & 3u, (shape >> 3) & 3u);
         EXPECT_LT(place >> 2, height);
         EXPECT_NE((r.coverage >> (4 * i)) & 15u, 0u);
       }

@@ -76,31 +76,28 @@ using PixelList = detail::UninitializedVector<PixelRecord>;
 // float values, and writes the colour shaded once per pixel.
 struct SampleRecord {
   uint16_t x0, y0;  // the bounding box's first pixel
-  // Bits 0-2: the pixels with a covered sample (1 to 4); bits 3-4 and 5-6: the box's width
-  // and height in pixels, less one (0 to 2 and 0 to 3).
-  uint8_t shape;
-  uint8_t unused0;
-  // Pixel i's place in the box, (y - y0) * 4 + (x - x0), in bits 4i to 4i + 3, in row-major
-  // order; its covered samples (bit s: sample s) in the same bits of `coverage`.
-  uint16_t offsets;
-  uint32_t coverage;
-  float z_dx, z_dy;  // the depth plane's gradients per pixel (TriangleSetup's)
+  // Bits 0-7, the shape: bits 0-2 the pixels with a covered sample (1 to 5), bits 3-4 and 5-6
+  // the box's width and height in pixels, less one (0 to 2 and 0 to 3). From bit 8, pixel i's
+  // place in the box, (y - y0) * 4 + (x - x0), in bits 8 + 4i to 11 + 4i, in row-major order.
+  uint32_t shape_places;
+  uint32_t coverage;  // pixel i's covered samples (bit s: sample s) in bits 4i to 4i + 3
+  float z_dx, z_dy;   // the depth plane's gradients per pixel (TriangleSetup's)
   // Pixel i's depth plane at the first pixel of its 8x8 block (the kernels' block base), and
   // its colour at its centre, packed as the RGBA8 target stores it.
-  float z_base[4];
-  uint32_t rgba8[4];
-  uint32_t unused1[3];  // to 64 bytes: one cache line
+  float z_base[5];
+  uint32_t rgba8[5];
+  uint32_t unused;  // to 64 bytes: one cache line
 };
 static_assert(sizeof(SampleRecord) == 64 &&
               std::is_trivially_default_constructible_v<SampleRecord>);
 
 // The most pixels a sample record holds.
-inline constexpr uint32_t kSampleRecordPixels = 4;
+inline constexpr uint32_t kSampleRecordPixels = 5;
 
 // The boxes a sample record may have: at most 3 pixels wide and 4 high, 12 pixels.
 inline constexpr uint32_t kSampleRecordBoxPixels = 12;
 
-// The sample records' entries: SampleRecord::offsets.
+// The sample records' entries: SampleRecord::shape_places' places.
 inline constexpr std::array<uint32_t, (1u << kSampleRecordBoxPixels)> kFirstSamplePixels =
     first_pixels_table<kSampleRecordBoxPixels>(kSampleRecordPixels, 4);
 

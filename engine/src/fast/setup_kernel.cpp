@@ -319,19 +319,19 @@ HWY_INLINE auto SampleValues(D d, size_t l0, VI first, VU low, VU high, uint32_t
       });
   auto origin = hn::Zero(du);
   const auto shape = RecordShape<3>(d, l0, first, out, origin);
-  const auto offsets = hn::BitCast(du, hn::And(first, hn::Set(di, 0xFFFF)));
+  const auto places = hn::BitCast(du, hn::And(first, hn::Set(di, 0xFFFFF)));
   const auto load = [&](const double* p) { return hn::Load(d, p + l0); };
   const auto z_dx = hn::BitCast(du, hn::DemoteTo(df, load(out.z_dx)));
   const auto z_dy = hn::BitCast(du, hn::DemoteTo(df, load(out.z_dy)));
-  const auto zero = hn::Zero(du);
-  static_assert(kSampleRecordPixels == 4);
-  hn::StoreInterleaved4(origin, hn::Or(shape, hn::ShiftLeft<16>(offsets)), coverage, z_dx, du,
+  static_assert(kSampleRecordPixels == 5);
+  hn::StoreInterleaved4(origin, hn::Or(shape, hn::ShiftLeft<8>(places)), coverage, z_dx, du,
                         out.sample_words[0] + 4 * l0);
   hn::StoreInterleaved4(z_dy, z_base_bits[0], z_base_bits[1], z_base_bits[2], du,
                         out.sample_words[1] + 4 * l0);
-  hn::StoreInterleaved4(z_base_bits[3], rgba8[0], rgba8[1], rgba8[2], du,
+  hn::StoreInterleaved4(z_base_bits[3], z_base_bits[4], rgba8[0], rgba8[1], du,
                         out.sample_words[2] + 4 * l0);
-  hn::StoreInterleaved4(rgba8[3], zero, zero, zero, du, out.sample_words[3] + 4 * l0);
+  hn::StoreInterleaved4(rgba8[2], rgba8[3], rgba8[4], hn::Zero(du), du,
+                        out.sample_words[3] + 4 * l0);
   // As lanes of D.
   const auto beyond_i = hn::VecFromMask(di, hn::RebindMask(di, beyond));
   return hn::Lt(hn::PromoteTo(d, beyond_i), hn::Zero(d));

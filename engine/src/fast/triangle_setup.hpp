@@ -101,7 +101,7 @@ struct SetupContext {
   // records (pixel_record.hpp).
   bool pixel_records = false;
   // Two or four samples per pixel and a colour target that is RGBA8 or not written: the
-  // vectorized setup turns small triangles whose covered samples lie in at most four pixels of
+  // vectorized setup turns small triangles whose covered samples lie in at most five pixels of
   // a box of at most 3 pixels across and 4 down into sample records (pixel_record.hpp).
   bool sample_records = false;
 
