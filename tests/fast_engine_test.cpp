@@ -511,6 +511,19 @@ TEST(FastEngine, EveryCompareOpMatchesTheReferenceOnTinyAndSmallTriangles) {
   }
 }
 
+// A draw with records against the same draw with full setups for every triangle: the same
+// sample counters, depth bits and colour bytes.
+void expect_same_draw(const Result& records, const Result& setups) {
+  EXPECT_EQ(records.counters.samples_covered, setups.counters.samples_covered);
+  EXPECT_EQ(records.counters.samples_passed, setups.counters.samples_passed);
+  EXPECT_EQ(records.counters.pixels_shaded, setups.counters.pixels_shaded);
+  ASSERT_EQ(records.depth.size(), setups.depth.size());
+  EXPECT_EQ(
+      std::memcmp(records.depth.data(), setups.depth.data(), records.depth.size() * sizeof(float)),
+      0);
+  EXPECT_EQ(records.rgba8, setups.rgba8);
+}
+
 TEST(FastEngine, SampleRecordsOfFourRowBoxesMatchTheReferenceAndTheFullSetups) {
   // Boxes up to 3 pixels wide and 4 high (tall_soup) become sample records when at most four
   // of their pixels have a covered sample: coverage as the reference's, and the same depth
@@ -529,14 +542,7 @@ TEST(FastEngine, SampleRecordsOfFourRowBoxesMatchTheReferenceAndTheFullSetups) {
                                    64, 8, false, /*records=*/false);
       ASSERT_GT(records.counters.samples_passed, 2000u * samples);
       EXPECT_EQ(records.counters.bin_references, setups.counters.bin_references);
-      EXPECT_EQ(records.counters.samples_covered, setups.counters.samples_covered);
-      EXPECT_EQ(records.counters.samples_passed, setups.counters.samples_passed);
-      EXPECT_EQ(records.counters.pixels_shaded, setups.counters.pixels_shaded);
-      ASSERT_EQ(records.depth.size(), setups.depth.size());
-      EXPECT_EQ(std::memcmp(records.depth.data(), setups.depth.data(),
-                            records.depth.size() * sizeof(float)),
-                0);
-      EXPECT_EQ(records.rgba8, setups.rgba8);
+      expect_same_draw(records, setups);
     });
   }
 }
@@ -605,14 +611,7 @@ TEST(FastEngine, TinyTriangleRecordsDrawTheSameBytesAsTheFullSetups) {
                     off.blocks_partial + off.blocks_rejected);
           EXPECT_LE(on.blocks_partial, off.blocks_partial);
         }
-        EXPECT_EQ(records.counters.samples_covered, setups.counters.samples_covered);
-        EXPECT_EQ(records.counters.samples_passed, setups.counters.samples_passed);
-        EXPECT_EQ(records.counters.pixels_shaded, setups.counters.pixels_shaded);
-        ASSERT_EQ(records.depth.size(), setups.depth.size());
-        EXPECT_EQ(std::memcmp(records.depth.data(), setups.depth.data(),
-                              records.depth.size() * sizeof(float)),
-                  0);
-        EXPECT_EQ(records.rgba8, setups.rgba8);
+        expect_same_draw(records, setups);
         if (samples == 1 && state.color_write) {
           Scene float_target = s;
           float_target.format = ColorFormat::kRGBA32F;

@@ -82,6 +82,22 @@ void add_tall_triangles(Draw& d, uint32_t seed, int count) {
   }
 }
 
+// The context of a draw of kWidth x kHeight with four colour values per vertex.
+SetupContext draw_context(const PipelineState& pipeline, uint32_t samples, bool records) {
+  SetupContext ctx;
+  ctx.width = kWidth;
+  ctx.height = kHeight;
+  ctx.subpixel_bits = 8;
+  ctx.attribute_count = 4;
+  ctx.pipeline = &pipeline;
+  ctx.guard_band = GuardBand::for_viewport(kWidth, kHeight);
+  ctx.bin_tile_log2 = kTileLog2;
+  ctx.set_sample_pattern(sample_pattern(samples));
+  ctx.pixel_records = records && samples == 1;
+  ctx.sample_records = records && samples > 1;
+  return ctx;
+}
+
 struct Output {
   SetupList setups;
   PixelList pixels;
@@ -167,17 +183,7 @@ void expect_same_bytes_on_every_target(const Draw& draw, bool expect_clipped) {
   for (uint32_t samples : {1u, 2u, 4u}) {
     for (bool records : {false, true}) {
       SCOPED_TRACE(std::to_string(samples) + " samples, records " + (records ? "on" : "off"));
-      SetupContext ctx;
-      ctx.width = kWidth;
-      ctx.height = kHeight;
-      ctx.subpixel_bits = 8;
-      ctx.attribute_count = 4;
-      ctx.pipeline = &pipeline;
-      ctx.guard_band = GuardBand::for_viewport(kWidth, kHeight);
-      ctx.bin_tile_log2 = kTileLog2;
-      ctx.set_sample_pattern(sample_pattern(samples));
-      ctx.pixel_records = records && samples == 1;
-      ctx.sample_records = records && samples > 1;
+      const SetupContext ctx = draw_context(pipeline, samples, records);
       const Output first = set_up(setup_kernel(targets[0]), ctx, input, triangles);
       // The draw exercises what it should: clipped triangles, setups and records.
       if (expect_clipped) {
@@ -226,16 +232,7 @@ TEST(SetupKernel, FourRowBoxesBecomeSampleRecords) {
   PipelineState pipeline;
   for (uint32_t samples : {2u, 4u}) {
     SCOPED_TRACE(std::to_string(samples) + " samples");
-    SetupContext ctx;
-    ctx.width = kWidth;
-    ctx.height = kHeight;
-    ctx.subpixel_bits = 8;
-    ctx.attribute_count = 4;
-    ctx.pipeline = &pipeline;
-    ctx.guard_band = GuardBand::for_viewport(kWidth, kHeight);
-    ctx.bin_tile_log2 = kTileLog2;
-    ctx.set_sample_pattern(sample_pattern(samples));
-    ctx.sample_records = true;
+    const SetupContext ctx = draw_context(pipeline, samples, true);
     const Output out = set_up(setup_kernel(hwy::SupportedTargets() & -hwy::SupportedTargets()), ctx,
                               input, draw.positions.size() / 3);
     size_t four_rows = 0;
