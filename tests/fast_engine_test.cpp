@@ -525,7 +525,7 @@ void expect_same_draw(const Result& records, const Result& setups) {
 }
 
 TEST(FastEngine, SampleRecordsOfFourRowBoxesMatchTheReferenceAndTheFullSetups) {
-  // Boxes up to 3 pixels wide and 4 high (tall_soup) become sample records when at most four
+  // Boxes up to 3 pixels wide and 4 high (tall_soup) become sample records when at most five
   // of their pixels have a covered sample: coverage as the reference's, and the same depth
   // bits, colour bytes and sample counters as full setups for every triangle.
   for (uint32_t samples : {2u, 4u}) {

@@ -548,7 +548,7 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     // a = -dy, b = dx: when E(centre) - (dy dx_s - dx dy_s) is not negative. The setup's pixels
     // (TriangleSetup::sample_bits) are those whose bits fit 32: every 3x3 one at one and two
     // samples, all but the last at four. Sample records take boxes of up to 3 pixels across
-    // and 4 down: every pixel of those is tested, its samples' bits kept apart (record_bits64).
+    // and 4 down: every pixel of those is tested.
     //
     // Only small triangles (every edge under 32 px: TriangleSetup::small) are tested, in 32-bit
     // lanes, two samples of a triangle side by side in its 64-bit lane (at one sample, two
@@ -638,9 +638,10 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
       step_y[k] = pair(sy, sy);
     }
     const auto pixel_samples = hn::Set(d64, (int64_t{1} << samples) - 1);
-    auto mask_bits64 = hn::Zero(d64);    // sample_mask's bits
-    auto record_bits64 = hn::Zero(d64);  // sample records: every tested pixel's, as sample_mask's
-    auto any_bits64 = hn::Zero(d64);     // sample records: the pixels with a covered sample
+    // Every tested pixel's samples, bit pixel * samples + s; sample_mask holds the first
+    // setup_pixels pixels' of them.
+    auto mask_bits64 = hn::Zero(d64);
+    auto any_bits64 = hn::Zero(d64);  // sample records: the pixels with a covered sample
     // With no lane's box fitting, every mask stays 0: the tests are skipped (`small`, most of
     // whose boxes are wider: 0.96x to 0.98x the time at one sample).
     if (row_pairs && !hn::AllFalse(d, fits)) {
@@ -707,10 +708,9 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
           }
           const auto pixel_mask =
               hn::IfThenElseZero(hn::RebindMask(d64, in_box), hn::AndNot(missed, pixel_samples));
-          const auto pixel_bits = hn::ShiftLeftSame(pixel_mask, static_cast<int>(pixel * samples));
-          if (pixel < setup_pixels) mask_bits64 = hn::Or(mask_bits64, pixel_bits);
+          mask_bits64 =
+              hn::Or(mask_bits64, hn::ShiftLeftSame(pixel_mask, static_cast<int>(pixel * samples)));
           if (ctx.sample_records) {
-            record_bits64 = hn::Or(record_bits64, pixel_bits);
             any_bits64 = hn::Or(any_bits64, hn::IfThenElseZero(hn::Ne(pixel_mask, hn::Zero(d64)),
                                                                hn::Set(d64, int64_t{1} << pixel)));
           }
@@ -721,7 +721,12 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
           row[k] = hn::Add(row[k], step_y[k]);
       }
     }
-    sample_mask = hn::ConvertTo(d, mask_bits64);  // below 2^32: exact
+    // The setup's pixels' bits (tested_pixels is setup_pixels without sample records): below
+    // 2^32, so exact as a double.
+    sample_mask = hn::ConvertTo(
+        d, tested_pixels == setup_pixels
+               ? mask_bits64
+               : hn::And(mask_bits64, hn::Set(d64, (int64_t{1} << (setup_pixels * samples)) - 1)));
     const V any_mask = hn::ConvertTo(d, any_bits64);
     // Only boxes that fit keep sample_bits: the others tested (full 3x3 boxes at four samples,
     // boxes of four rows) are binned as without records, with a setup whose sample_bits are 0,
@@ -745,8 +750,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
       // Sample records for the lanes with covered samples in 1 to kSampleRecordPixels pixels,
       // looked up as at one sample.
       // Bits 0-31 and 32-63 of the tested pixels' (pixels do not straddle them).
-      const V low = hn::ConvertTo(d, hn::And(record_bits64, hn::Set(d64, 0xFFFFFFFF)));
-      const V high = hn::ConvertTo(d, hn::ShiftRight<32>(record_bits64));
+      const V low = hn::ConvertTo(d, hn::And(mask_bits64, hn::Set(d64, 0xFFFFFFFF)));
+      const V high = hn::ConvertTo(d, hn::ShiftRight<32>(mask_bits64));
       record_low = hn::BitCast(du, hn::DemoteTo(di, as_signed(low)));
       record_high = hn::BitCast(du, hn::DemoteTo(di, high));
       first_pixels = table_entries(d, di, kFirstSamplePixels, any_mask);
