@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/src/fast/block_kernel.hpp"
+#include "engine/src/sample_positions.hpp"
 #include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 
@@ -543,6 +544,54 @@ TEST(FastEngine, SampleRecordsOfFourRowBoxesMatchTheReferenceAndTheFullSetups) {
       ASSERT_GT(records.counters.samples_passed, 2000u * samples);
       EXPECT_EQ(records.counters.bin_references, setups.counters.bin_references);
       expect_same_draw(records, setups);
+    });
+  }
+}
+
+TEST(FastEngine, SmallTrianglesReachingTheEndsOfTheDepthRangeStoreTheSameBitsOnEveryTarget) {
+  // Triangles of about 15 px (the vector targets' window path) with a vertex on or within a
+  // rounding of the near or far plane (depth 0 or 1), placed on a sample: the kernels' float
+  // sums from the block's corner may land a rounding beyond the range there, which the clamp
+  // must catch on every target. Every covered sample is written (kAlways), so each lands in the
+  // buffer; the scalar target, whose path always clamps, is the baseline. The ends, and depths
+  // within a rounding of them (2^-26 above 0, one float step below 1).
+  const float kEnds[4] = {0.0f, std::ldexp(1.0f, -26), 1.0f - std::ldexp(1.0f, -24), 1.0f};
+  for (uint32_t samples : {1u, 4u}) {
+    SCOPED_TRACE(std::to_string(samples) + " samples");
+    const auto pattern = sample_pattern(samples);
+    Scene s;
+    s.samples = samples;
+    s.pipeline.depth_compare = CompareOp::kAlways;
+    std::mt19937 rng(70 + samples);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int i = 0; i < 4000; ++i) {
+      const float cx = std::floor(u(rng) * static_cast<float>(s.width));
+      const float cy = std::floor(u(rng) * static_cast<float>(s.height));
+      const float rot = u(rng) * 2.0f * std::numbers::pi_v<float>;
+      float x[3], y[3], z[3], c[3][4];
+      const float w[3] = {1.0f, 1.0f, 1.0f};
+      for (int k = 0; k < 3; ++k) {
+        const float a = rot + static_cast<float>(k) * 2.0f * std::numbers::pi_v<float> / 3.0f;
+        // Each vertex on a sample of its pixel, one of them at depth 0 or 1 and the others
+        // anywhere in the range, so the depth plane is steep.
+        const SampleOffset on = pattern[rng() % samples];
+        x[k] = cx + std::round(3.5f * std::cos(a)) + 0.5f + static_cast<float>(on.dx) / 16.0f;
+        y[k] = cy + std::round(3.5f * std::sin(a)) + 0.5f + static_cast<float>(on.dy) / 16.0f;
+        z[k] = k == 0 ? kEnds[i % 4] : u(rng);
+        for (int ch = 0; ch < 4; ++ch)
+          c[k][ch] = u(rng);
+      }
+      s.add(x, y, z, w, c);
+    }
+    const Result baseline = render(s, Backend::kFast, {SimdTarget::kScalar, 1});
+    for (float d : baseline.depth) {
+      ASSERT_GE(d, 0.0f);
+      ASSERT_LE(d, 1.0f);
+    }
+    for_each_config([&](const Config& config) {
+      const Result r = render(s, Backend::kFast, config);
+      EXPECT_EQ(0, std::memcmp(r.depth.data(), baseline.depth.data(), r.depth.size() * 4));
+      EXPECT_EQ(r.rgba8, baseline.rgba8);
     });
   }
 }
