@@ -1164,17 +1164,22 @@ TEST(FastEngine, SubBlocksSkipLaneGroupsOutsideAnEdgeAndTestOnlyTheEdgesCrossing
 
 TEST(FastEngine, ClearsTakeEffectWhereverTheFramebufferIsNextUsed) {
   // Clears are recorded and written per tile when the fast engine next draws the tile, or
-  // before any other use. A sequence of clears, draws (one without triangles, one covering
-  // only part of the screen) and reads in between must leave the same bytes as the same
+  // before any other use; tiles a draw does not touch keep them. A sequence of clears, draws
+  // (one without triangles, two covering only part of the screen, the second drawing tiles the
+  // first left pending) and reads in between must leave the same bytes as the same
   // sequence with every clear written at once (a read right after each clear forces it), for
   // every bin tile size (32-pixel bin tiles share a storage tile), sample count and colour
   // format; in RGBA8 they are also the reference's bytes.
   // Flat depth per triangle (exact in both engines), tested with <.
   Scene first = soup(770, 300, 40.0f, true);
   Scene second = soup(771, 300, 40.0f, true);
+  Scene third = soup(772, 300, 40.0f, true);
   first.pipeline.depth_compare = second.pipeline.depth_compare = CompareOp::kLess;
+  third.pipeline.depth_compare = CompareOp::kLess;
   for (Float4& p : second.positions)
     p.x = std::min(p.x, 0.0f);  // the left half of the screen only
+  for (Float4& p : third.positions)
+    p.x = std::max(p.x, 0.0f);  // the right half only: tiles the draw before left pending
   for (const uint32_t samples : {1u, 4u}) {
     for (const ColorFormat format : {ColorFormat::kRGBA8, ColorFormat::kRGBA32F}) {
       SCOPED_TRACE("samples " + std::to_string(samples) +
@@ -1207,6 +1212,7 @@ TEST(FastEngine, ClearsTakeEffectWhereverTheFramebufferIsNextUsed) {
         fb.clear_color({0.9f, 0.8f, 0.7f, 0.5f});  // colour only: the depth of `first` stays
         written();
         draw(second);
+        draw(third);
         seen.push_back(fb.read_rgba32f());
         seen.push_back(fb.read_sample_depth());
         fb.clear_depth(0.5f);

@@ -99,7 +99,8 @@ struct FramebufferStorage {
   // Clears recorded by Framebuffer::clear_color and clear_depth but not yet written, per tile:
   // bit 0 colour, bit 1 depth (Hi-Z bounds are cleared at once). The fast triangle path writes
   // a tile's pending clears when it starts drawing that tile, in parallel and into cache, and
-  // visits every tile; FramebufferAccess::storage writes all of them before any other access.
+  // leaves those of tiles it does not draw; FramebufferAccess::storage writes all of them
+  // before any other access.
   static constexpr uint8_t kColorPending = 1, kDepthPending = 2;
   std::vector<uint8_t> pending;
   // Set by the clears (the caller's exclusive access); const reads may write the pending

@@ -368,7 +368,10 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
                           }
                         });
     });
-    fb.any_pending.store(false, std::memory_order_release);  // every tile was visited
+    // Tiles no triangle touched keep their pending clears.
+    fb.any_pending.store(
+        std::any_of(fb.pending.begin(), fb.pending.end(), [](uint8_t p) { return p != 0; }),
+        std::memory_order_release);
     start = st.chunks[last].stopped_at;
   }
 
