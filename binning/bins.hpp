@@ -5,8 +5,8 @@
 //
 // The lists live in one flat array, built in two steps (a counting sort): while triangles are
 // set up, each one's tile rectangle and reference (the value its tiles' lists hold for it: an
-// index into the worker's records) are recorded; then place() counts each tile's references
-// and lays them out tile by tile into an array of exactly their number. The
+// index into the worker's records) are recorded and its tiles' counts raised; then place()
+// lays the references out tile by tile into an array of exactly their number. The
 // memory a bin set holds is therefore known (bytes()) and its user can keep it within a budget.
 #pragma once
 
@@ -58,18 +58,20 @@ class Bins {
     rects_.push_back(r);
     refs_.push_back(reference);
     references_ += r.count();
+    for_each_tile(r, [&](uint32_t t) { ++counts_[t]; });
   }
   // Forgets the triangles recorded after the first `triangles`.
   void truncate(size_t triangles) {
-    for (size_t i = triangles; i < rects_.size(); ++i)
+    for (size_t i = triangles; i < rects_.size(); ++i) {
       references_ -= rects_[i].count();
+      for_each_tile(rects_[i], [&](uint32_t t) { --counts_[t]; });
+    }
     rects_.resize(triangles);
     refs_.resize(triangles);
   }
-  // Lays the recorded triangles' references out, tile by tile, in recording order.
+  // Lays the recorded triangles' references out, tile by tile, in recording order (each tile's
+  // count kept as they were recorded).
   void place() {
-    for (const TileRect& r : rects_)
-      for_each_tile(r, [&](uint32_t t) { ++counts_[t]; });
     uint32_t start = 0;
     for (size_t t = 0; t < counts_.size(); ++t) {
       starts_[t] = start;
