@@ -553,8 +553,8 @@ TEST(FastEngine, SmallTrianglesReachingTheEndsOfTheDepthRangeStoreTheSameBitsOnE
   // rounding of the near or far plane (depth 0 or 1), placed on a sample: the kernels' float
   // sums from the block's corner may land a rounding beyond the range there, which the clamp
   // must catch on every target. Every covered sample is written (kAlways), so each lands in the
-  // buffer; the scalar target, whose path always clamps, is the baseline. The ends, and depths
-  // within a rounding of them (2^-26 above 0, one float step below 1).
+  // buffer; the scalar target, whose path always clamps, is the baseline.
+  // The ends, and depths within a rounding of them (2^-26 above 0, one float step below 1):
   const float kEnds[4] = {0.0f, std::ldexp(1.0f, -26), 1.0f - std::ldexp(1.0f, -24), 1.0f};
   for (uint32_t samples : {1u, 4u}) {
     SCOPED_TRACE(std::to_string(samples) + " samples");

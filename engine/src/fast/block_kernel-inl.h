@@ -997,7 +997,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   // are within hiz_margin of the plane (the block base in double, then offsets of under 8 px;
   // the gradients' float rounding over a small triangle's 40 px is below it too). With that
   // room inside (0, 1) the clamp changes no covered lane, and is left out (`small` at four
-  // samples about 0.98x the time, benchmarks/RESULTS.md).
+  // samples 0.95x to 0.98x the time, benchmarks/RESULTS.md).
   const double z_margin = hiz_margin(t);
   const bool clamp = !(t.z_min - z_margin > 0.0 && t.z_max + z_margin < 1.0);
   // The windows' blocks: a, and b to its right when some lane of the box lies there; their
