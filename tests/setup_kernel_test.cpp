@@ -138,7 +138,7 @@ bool same_pixels(const PixelRecord& a, const PixelRecord& b) {
 }
 
 bool same_pixels(const SampleRecord& a, const SampleRecord& b) {
-  const uint32_t n = a.shape_places & 7u;
+  const uint32_t n = a.pixels();
   const uint32_t nibbles = (1u << (4 * n)) - 1;
   bool same = a.x0 == b.x0 && a.y0 == b.y0 &&
               (a.shape_places & 0xFFu) == (b.shape_places & 0xFFu) &&
@@ -237,15 +237,14 @@ TEST(SetupKernel, FourRowBoxesBecomeSampleRecords) {
                               input, draw.positions.size() / 3);
     size_t four_rows = 0;
     for (const SampleRecord& r : out.samples) {
-      const uint32_t shape = r.shape_places & 0xFFu;
-      const uint32_t height = ((shape >> 5) & 3u) + 1;
+      const uint32_t height = static_cast<uint32_t>(r.last_y()) + 1;
       four_rows += height == 4;
       // Every pixel a record holds lies in its box.
-      for (uint32_t i = 0; i < (shape & 7u); ++i) {
-        const uint32_t place = (r.shape_places >> (8 + 4 * i)) & 15u;
-        EXPECT_LE(place & 3u, (shape >> 3) & 3u);
+      for (uint32_t i = 0; i < r.pixels(); ++i) {
+        const uint32_t place = r.place(i);
+        EXPECT_LE(place & 3u, static_cast<uint32_t>(r.last_x()));
         EXPECT_LT(place >> 2, height);
-        EXPECT_NE((r.coverage >> (4 * i)) & 15u, 0u);
+        EXPECT_NE(r.samples(i), 0u);
       }
     }
     EXPECT_GT(four_rows, 500u);

@@ -1483,14 +1483,14 @@ HWY_INLINE void raster_sample_record(const TileContext& tc, const SampleRecord& 
                                      Counters& counters, [[maybe_unused]] Compare compare) {
   static_assert(kColor != ColorMode::kRGBA32F, "sample records hold RGBA8 colour");
   const int32_t x0 = r.x0, y0 = r.y0;
-  const uint32_t shape = r.shape_places & 0xFFu, n = shape & 7u;
+  const uint32_t n = r.pixels();
   uint32_t covered = 0, passed = 0, shaded = 0, blocks = 0;  // as count_pixels takes them
   for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t place = (r.shape_places >> (8 + 4 * i)) & 15u;
+    const uint32_t place = r.place(i);
     const int32_t x = x0 + static_cast<int32_t>(place & 3),
                   y = y0 + static_cast<int32_t>(place >> 2);
     if (x < tc.x0 || x > tc.x1 || y < tc.y0 || y > tc.y1) continue;  // another tile's
-    const uint32_t cov = (r.coverage >> (4 * i)) & 15u;
+    const uint32_t cov = r.samples(i);
     const PixelSite site(tc, x0, y0, x, y);
     if constexpr (kCount) {
       covered += static_cast<uint32_t>(std::popcount(cov));
@@ -1509,8 +1509,8 @@ HWY_INLINE void raster_sample_record(const TileContext& tc, const SampleRecord& 
     if constexpr (kColor == ColorMode::kRGBA8) write_packed(tc, site.index, pass, r.rgba8[i]);
   }
   if constexpr (kCount) {
-    count_pixels(tc, x0, y0, x0 + ((shape >> 3) & 3), y0 + ((shape >> 5) & 3), blocks, covered,
-                 passed, shaded, counters);
+    count_pixels(tc, x0, y0, x0 + r.last_x(), y0 + r.last_y(), blocks, covered, passed, shaded,
+                 counters);
   }
 }
 

@@ -87,6 +87,14 @@ struct SampleRecord {
   float z_base[5];
   uint32_t rgba8[5];
   uint32_t unused;  // to 64 bytes: one cache line
+
+  // The fields of shape_places.
+  uint32_t pixels() const { return shape_places & 7u; }
+  int32_t last_x() const { return static_cast<int32_t>((shape_places >> 3) & 3u); }  // width - 1
+  int32_t last_y() const { return static_cast<int32_t>((shape_places >> 5) & 3u); }  // height - 1
+  uint32_t place(uint32_t i) const { return (shape_places >> (8 + 4 * i)) & 15u; }
+  // Pixel i's covered samples.
+  uint32_t samples(uint32_t i) const { return (coverage >> (4 * i)) & 15u; }
 };
 static_assert(sizeof(SampleRecord) == 64 &&
               std::is_trivially_default_constructible_v<SampleRecord>);

@@ -750,10 +750,9 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
       // Sample records for the lanes with covered samples in 1 to kSampleRecordPixels pixels,
       // looked up as at one sample.
       // Bits 0-31 and 32-63 of the tested pixels' (pixels do not straddle them).
-      const V low = hn::ConvertTo(d, hn::And(mask_bits64, hn::Set(d64, 0xFFFFFFFF)));
-      const V high = hn::ConvertTo(d, hn::ShiftRight<32>(mask_bits64));
-      record_low = hn::BitCast(du, hn::DemoteTo(di, as_signed(low)));
-      record_high = hn::BitCast(du, hn::DemoteTo(di, high));
+      const auto tested_bits = hn::BitCast(hn::RebindToUnsigned<decltype(d64)>(), mask_bits64);
+      record_low = hn::TruncateTo(du, tested_bits);
+      record_high = hn::TruncateTo(du, hn::ShiftRight<32>(tested_bits));
       first_pixels = table_entries(d, di, kFirstSamplePixels, any_mask);
       const V found = hn::PromoteTo(d, hn::ShiftRight<24>(first_pixels));
       any_pixel = hn::And(hn::Gt(found, zero),
