@@ -1229,6 +1229,11 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
 // blocks outside an edge the block path skips whole).
 constexpr int32_t kWindowBox = 8;
 
+// A small triangle whose box is more than this many pixels wide or tall tests Hi-Z (8:
+// `medium` about 0.93x the time of 16 at one thread and one sample, 0.97x at four, about 0.94x
+// at two threads; `small`, `tiny` and `grid` within the noise; 6: `small` 1.24x).
+constexpr int32_t kSmallHizBox = 8;
+
 // The widest and tallest box, in pixels, whose pixel centres the kernel tests one by one
 // (3 measured 4% faster than 2 on `tiny` and `grid`; 4 no faster than 3).
 constexpr int32_t kCentresBox = 3;
@@ -1530,9 +1535,9 @@ void RasterSamples(const TileContext& tc, const SampleRecord& r, Counters& count
 
 // One triangle over its blocks in this tile. kCount compiles the block, Hi-Z and sample
 // counters in; without it the kernel carries no counting code at all. Small triangles whose
-// bounding box spans 16 px or more test Hi-Z per block (below that, recomputing the bounds of
-// blocks written since their last test costs more than the blocks it rejects: `tiny` 1.14x,
-// `small` 1.12x in benchmarks/RESULTS.md).
+// bounding box is more than kSmallHizBox pixels wide or tall test Hi-Z per block (below that,
+// recomputing the bounds of blocks written since their last test costs more than the blocks it
+// rejects: `tiny` 1.14x, `small` 1.12x in benchmarks/RESULTS.md).
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
 void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
   if (!kMulti && t.centres != 0) {
@@ -1543,7 +1548,7 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
     raster_centres<kDepth, kColor, kCount>(tc, t, centres_inside(tc, t), counters);
   } else if (!t.small) {
     raster_general<kDepth, kColor, kMulti, kCount>(tc, t, counters);
-  } else if (tc.hiz && (t.x1 - t.x0 >= 16 || t.y1 - t.y0 >= 16)) {
+  } else if (tc.hiz && (t.x1 - t.x0 >= kSmallHizBox || t.y1 - t.y0 >= kSmallHizBox)) {
     raster_small_hiz<kDepth, kColor, kMulti, kCount>(tc, t, counters);
   } else {
     if constexpr (kColor != ColorMode::kRGBA32F) {
