@@ -28,10 +28,10 @@ inline void prefetch_setup(const TriangleSetup* setup) {
 // (kPixelRecordBit) to `record_kernel`. Records were written long before this tile reads them:
 // each is fetched a few references ahead. A setup spans three cache lines and is fetched 6
 // ahead (measured 2% faster than 4 on `tiny`, the same elsewhere; 2 and 12 slower). A record
-// is one line: a pixel record is fetched 64 ahead (`tiny` at two threads about 0.96x the time
-// of 16 ahead, `grid` at one sample about 0.98x), a sample record, whose samples take longer
-// to draw, 16 ahead (64 made `tiny` at four samples 1-3% slower). The first ones are fetched
-// before the loop.
+// is one line: a pixel record is fetched 64 ahead (`tiny` 0.94x to 1.01x the time of 16 ahead
+// at two threads, about 0.98x at one; `grid` within 2%), a sample record, whose samples take
+// longer to draw, 16 ahead (64 made `tiny` at four samples 1-3% slower). The first ones are
+// fetched before the loop.
 template <class Record, class RecordKernel>
 void draw_list(const TileContext& tc, std::span<const uint32_t> list, const TriangleSetup* setups,
                TriangleKernel kernel, const Record* records, RecordKernel record_kernel,
