@@ -128,7 +128,7 @@ bool same_bytes(const SetupList& a, const SetupList& b) {
 // read, and hold whatever its vector computed there for other lanes (so they depend on the
 // vector width). The pixels a record holds must be the same bytes.
 bool same_pixels(const PixelRecord& a, const PixelRecord& b) {
-  const uint32_t n = a.shape & 3u;
+  const uint32_t n = a.pixels();
   bool same = a.x0 == b.x0 && a.y0 == b.y0 && a.shape == b.shape;
   for (uint32_t i = 0; i < n; ++i) {
     same = same && a.offset[i] == b.offset[i] &&

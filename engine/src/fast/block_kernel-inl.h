@@ -1382,7 +1382,7 @@ HWY_INLINE void raster_pixel_record(const TileContext& tc, const PixelRecord& r,
                                     [[maybe_unused]] Compare compare) {
   static_assert(kColor != ColorMode::kRGBA32F, "pixel records hold RGBA8 colour");
   const int32_t x0 = r.x0, y0 = r.y0;
-  const uint32_t n = r.shape & 3u;
+  const uint32_t n = r.pixels();
   uint32_t covered = 0, passed = 0, blocks = 0;  // as count_pixels takes them
   for (uint32_t i = 0; i < n; ++i) {
     const int32_t x = x0 + (r.offset[i] & 3), y = y0 + (r.offset[i] >> 2);
@@ -1401,8 +1401,8 @@ HWY_INLINE void raster_pixel_record(const TileContext& tc, const PixelRecord& r,
     }
   }
   if constexpr (kCount) {
-    count_pixels(tc, x0, y0, x0 + ((r.shape >> 2) & 3), y0 + ((r.shape >> 4) & 3), blocks, covered,
-                 passed, kColor != ColorMode::kOff ? passed : 0, counters);
+    count_pixels(tc, x0, y0, x0 + r.last_x(), y0 + r.last_y(), blocks, covered, passed,
+                 kColor != ColorMode::kOff ? passed : 0, counters);
   }
 }
 

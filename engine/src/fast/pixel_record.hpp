@@ -32,6 +32,11 @@ struct PixelRecord {
   uint8_t offset[3];
   float z[3];         // z / w, clamped to [0, 1] (not yet rounded to a fixed-point format)
   uint32_t rgba8[3];  // colour, packed as the RGBA8 target stores it
+
+  // The fields of shape.
+  uint32_t pixels() const { return shape & 3u; }
+  int32_t last_x() const { return (shape >> 2) & 3; }  // width - 1
+  int32_t last_y() const { return (shape >> 4) & 3; }  // height - 1
 };
 static_assert(sizeof(PixelRecord) == 32 && std::is_trivially_default_constructible_v<PixelRecord>);
 
