@@ -51,6 +51,9 @@ struct TileContext {
   // Sample offsets from the pixel centre, in fixed point and in pixels.
   std::array<int32_t, 16> sample_x{}, sample_y{};
   std::array<float, 16> sample_fx{}, sample_fy{};
+  // sample_x and sample_y with each sample's value four times (index 4 * s + e): the kernels
+  // form a sample's edge thresholds in a row of four lanes.
+  alignas(64) std::array<int32_t, 64> sample_x4{}, sample_y4{};
 
   // The region drawn: its first and last pixel (inclusive, inside the framebuffer): a bin tile
   // (block-aligned) inside one storage tile. The storage tile's first pixel and storage:

@@ -129,6 +129,10 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     draw.sample_y[s] = pattern[s].dy * (1 << (bits - 4));
     draw.sample_fx[s] = pattern[s].dx / 16.0f;
     draw.sample_fy[s] = pattern[s].dy / 16.0f;
+    for (uint32_t e = 0; e < 4; ++e) {
+      draw.sample_x4[4 * s + e] = draw.sample_x[s];
+      draw.sample_y4[4 * s + e] = draw.sample_y[s];
+    }
   }
   const DepthMode depth = !pipeline.depth_test   ? DepthMode::kOff
                           : pipeline.depth_write ? DepthMode::kTestWrite
