@@ -413,8 +413,21 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
     // same sums plane_at forms, so the bits do not change). Offsets are read in the sample
     // loop, after the bases, with which they are computed.
     const auto z_rel = hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
-    auto pass_bits = hn::Zero(du);      // bit s: sample s passed (multisample)
-    auto pass_one = hn::FirstN(du, 0);  // the one sample's passing lanes (single sample)
+    // Multisample: each sample's passing lanes (raster_window's keep and passed).
+#if HWY_HAVE_SCALABLE
+    auto pass_bits = hn::Zero(du);  // bit s: sample s passed
+    const auto keep = [&](uint32_t s, auto pass) {
+      pass_bits =
+          hn::Or(pass_bits, hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
+    };
+    const auto passed = [&](uint32_t s) { return hn::TestBit(pass_bits, hn::Set(du, 1u << s)); };
+#else
+    hn::Mask<decltype(du)> pass_masks[16];
+    const auto keep = [&](uint32_t s, auto pass) { pass_masks[s] = hn::RebindMask(du, pass); };
+    const auto passed = [&](uint32_t s) { return pass_masks[s]; };
+#endif
+    // The one sample's passing lanes; multisample: the lanes where any sample passed.
+    auto pass_one = hn::FirstN(du, 0);
     for (uint32_t s = 0; s < samples; ++s) {
       auto cov = inside;
       if (wide) {
@@ -467,8 +480,8 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       }
       if constexpr (kCount) st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
       if constexpr (kMulti) {
-        pass_bits =
-            hn::Or(pass_bits, hn::IfThenElseZero(hn::RebindMask(du, pass), hn::Set(du, 1u << s)));
+        keep(s, pass);
+        pass_one = hn::Or(pass_one, hn::RebindMask(du, pass));
       } else {
         pass_one = hn::RebindMask(du, pass);
       }
@@ -477,8 +490,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
     if constexpr (kColor != ColorMode::kOff) {
       // Single sample: the passing lanes themselves, not a bit set built from them and
       // tested again (a shorter chain ahead of the branch below).
-      const auto any = kMulti ? hn::Ne(pass_bits, hn::Zero(du)) : pass_one;
-      if constexpr (!kMulti) pass_bits = hn::IfThenElseZero(any, hn::Set(du, 1u));
+      const auto any = pass_one;
       if (hn::AllFalse(du, any)) continue;
       if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
       PlaneOffsets* const po = st.offsets;
@@ -505,7 +517,15 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
           alignas(64) float channel[4][64];
           alignas(64) uint32_t passing[64];
           store_channels(df, r, g, b, a, channel);
-          hn::Store(pass_bits, du, passing);
+          auto lane_passes = hn::IfThenElseZero(any, hn::Set(du, 1u));  // bit s: sample s passed
+          if constexpr (kMulti) {
+            lane_passes = hn::Zero(du);
+            for (uint32_t s = 0; s < samples; ++s) {
+              lane_passes =
+                  hn::Or(lane_passes, hn::IfThenElseZero(passed(s), hn::Set(du, 1u << s)));
+            }
+          }
+          hn::Store(lane_passes, du, passing);
           for (size_t l = 0; l < lanes; ++l) {
             const float lx = kPixels.fx[i + l], ly = kPixels.fy[i + l];
             if (passing[l] == 0 || q_base + (t.q_dx * lx + t.q_dy * ly) > 0.0f) continue;
@@ -528,13 +548,12 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
           hn::BlendedStore(packed, any, du, colour);
         } else {
           for (uint32_t s = 0; s < samples; ++s) {
-            hn::BlendedStore(packed, hn::TestBit(pass_bits, hn::Set(du, 1u << s)), du,
-                             colour + s * kSamplePlane);
+            hn::BlendedStore(packed, passed(s), du, colour + s * kSamplePlane);
           }
         }
       } else {
         for (uint32_t s = 0; s < samples; ++s) {
-          const auto m = hn::RebindMask(df, hn::TestBit(pass_bits, hn::Set(du, 1u << s)));
+          const auto m = hn::RebindMask(df, kMulti ? passed(s) : any);
           float* dst = tc.rgba32f + (block * 64 + s * kSamplePlane + i) * 4;
           hn::Vec<decltype(df)> r0, g0, b0, a0;
           hn::LoadInterleaved4(df, dst, r0, g0, b0, a0);
