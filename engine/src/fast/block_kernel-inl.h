@@ -413,7 +413,10 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
     // same sums plane_at forms, so the bits do not change). Offsets are read in the sample
     // loop, after the bases, with which they are computed.
     const auto z_rel = hn::Add(hn::Mul(fx, hn::Set(df, t.z_dx)), hn::Mul(fy, hn::Set(df, t.z_dy)));
-    // Multisample: each sample's passing lanes (raster_window's keep and passed).
+    // Multisample: which lanes each sample passed, kept (keep) and read back (passed) as one
+    // mask per sample (medium, large and huge at four samples 0.95x to 0.99x the time of a
+    // vector of lane bits). Sizeless-vector targets (SVE), whose masks cannot be array elements,
+    // keep the bits.
 #if HWY_HAVE_SCALABLE
     auto pass_bits = hn::Zero(du);  // bit s: sample s passed
     const auto keep = [&](uint32_t s, auto pass) {
@@ -488,8 +491,8 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
     }
 
     if constexpr (kColor != ColorMode::kOff) {
-      // Single sample: the passing lanes themselves, not a bit set built from them and
-      // tested again (a shorter chain ahead of the branch below).
+      // The passing lanes themselves (multisample: of any sample), not a bit set built from
+      // them and tested again (a shorter chain ahead of the branch below).
       const auto any = pass_one;
       if (hn::AllFalse(du, any)) continue;
       if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
