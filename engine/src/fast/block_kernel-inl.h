@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 
 #include "binning/tile_grid.hpp"
 #include "engine/src/fast/block_kernel.hpp"
@@ -984,6 +985,21 @@ HWY_NOINLINE void raster_small_hiz(const TileContext& tc, const TriangleSetup& t
   raster_small<kDepth, kColor, kMulti, kCount, true>(tc, t, counters);
 }
 
+// m & (a > b) for int32 lanes: one compare under a mask on AVX-512 (a compare and a mask AND
+// elsewhere).
+template <class D>
+HWY_INLINE hn::Mask<D> and_greater(D d, hn::Mask<D> m, hn::Vec<D> a, hn::Vec<D> b) {
+  static_assert(std::is_same_v<hn::TFromD<D>, int32_t>);
+#if HWY_TARGET <= HWY_AVX3
+  if constexpr (hn::MaxLanes(D()) == 16) {
+    (void)d;
+    return hn::Mask<D>{_mm512_mask_cmpgt_epi32_mask(m.raw, a.raw, b.raw)};
+  }
+#endif
+  (void)d;
+  return hn::And(m, hn::Gt(a, b));
+}
+
 // The small path's lane groups at one sample or several, for an RGBA8 or no colour target:
 // windows of 8 pixels across and lanes / 8 rows, at the bounding box's first column (not at a
 // block's) and at an even row (every lanes / 8-th), so that a narrow box takes one window per
@@ -1093,6 +1109,13 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       return hn::And(m, hn::Gt(e2, hn::Set(di, threshold[2])));
     };
     const auto cov_any = covered(threshold_lo);
+    // A sample's coverage, inside cov_any: fewer operations, in a longer chain (the samples'
+    // chains are independent of one another).
+    const auto sample_covered = [&](const int32_t* threshold) {
+      auto m = and_greater(di, cov_any, e0, hn::Set(di, threshold[0]));
+      m = and_greater(di, m, e1, hn::Set(di, threshold[1]));
+      return and_greater(di, m, e2, hn::Set(di, threshold[2]));
+    };
     if (hn::AllFalse(di, cov_any)) continue;
 
     const size_t block_a =
@@ -1145,7 +1168,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       const auto test_sample = [&](uint32_t s, auto stored) {
         auto pass = pass_one;
         if constexpr (kMulti) {
-          pass = hn::RebindMask(df, covered(st.edge_threshold[s]));
+          pass = hn::RebindMask(df, sample_covered(st.edge_threshold[s]));
           if constexpr (kCount) st.covered += static_cast<uint32_t>(hn::CountTrue(df, pass));
         }
         auto z = hn::Add(kMulti ? bases(za + st.z_offset[s], zb + st.z_offset[s]) : bases(za, zb),
@@ -1196,7 +1219,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       }
     } else if constexpr (kMulti) {
       for (uint32_t s = 0; s < samples; ++s) {
-        const auto pass = covered(st.edge_threshold[s]);
+        const auto pass = sample_covered(st.edge_threshold[s]);
         if constexpr (kCount) {
           st.covered += static_cast<uint32_t>(hn::CountTrue(di, pass));
           st.passed += static_cast<uint32_t>(hn::CountTrue(di, pass));
