@@ -168,6 +168,17 @@ HWY_INLINE void load_channels(DF df, const float (&channel)[4][64], VF& r, VF& g
   a = hn::Load(df, channel[3]);
 }
 
+// Bit s of a lane set where sample s passed there (passed(s): that sample's mask), for the
+// horizon fallback's lane-by-lane loop.
+template <class DU, class Passed>
+HWY_INLINE hn::Vec<DU> sample_bits(DU du, uint32_t samples, const Passed& passed) {
+  auto bits = hn::Zero(du);
+  for (uint32_t s = 0; s < samples; ++s) {
+    bits = hn::Or(bits, hn::IfThenElseZero(hn::RebindMask(du, passed(s)), hn::Set(du, 1u << s)));
+  }
+  return bits;
+}
+
 enum class HizVerdict { kTest, kReject, kAccept };
 
 // Whether every sample of a block fails (reject) or passes (accept) the depth test, from the
@@ -521,15 +532,11 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
           alignas(64) float channel[4][64];
           alignas(64) uint32_t passing[64];
           store_channels(df, r, g, b, a, channel);
-          auto lane_passes = hn::IfThenElseZero(any, hn::Set(du, 1u));  // bit s: sample s passed
           if constexpr (kMulti) {
-            lane_passes = hn::Zero(du);
-            for (uint32_t s = 0; s < samples; ++s) {
-              lane_passes =
-                  hn::Or(lane_passes, hn::IfThenElseZero(passed(s), hn::Set(du, 1u << s)));
-            }
+            hn::Store(sample_bits(du, samples, passed), du, passing);
+          } else {
+            hn::Store(hn::IfThenElseZero(any, hn::Set(du, 1u)), du, passing);
           }
-          hn::Store(lane_passes, du, passing);
           for (size_t l = 0; l < lanes; ++l) {
             const float lx = kPixels.fx[i + l], ly = kPixels.fy[i + l];
             if (passing[l] == 0 || q_base + (t.q_dx * lx + t.q_dy * ly) > 0.0f) continue;
@@ -988,15 +995,14 @@ HWY_NOINLINE void raster_small_hiz(const TileContext& tc, const TriangleSetup& t
 // m & (a > b) for int32 lanes: one compare under a mask on AVX-512 (a compare and a mask AND
 // elsewhere).
 template <class D>
-HWY_INLINE hn::Mask<D> and_greater(D d, hn::Mask<D> m, hn::Vec<D> a, hn::Vec<D> b) {
+HWY_INLINE hn::Mask<D> and_greater([[maybe_unused]] D d, hn::Mask<D> m, hn::Vec<D> a,
+                                   hn::Vec<D> b) {
   static_assert(std::is_same_v<hn::TFromD<D>, int32_t>);
 #if HWY_TARGET <= HWY_AVX3
   if constexpr (hn::MaxLanes(D()) == 16) {
-    (void)d;
     return hn::Mask<D>{_mm512_mask_cmpgt_epi32_mask(m.raw, a.raw, b.raw)};
   }
 #endif
-  (void)d;
   return hn::And(m, hn::Gt(a, b));
 }
 
@@ -1146,8 +1152,10 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
     const auto keep = [&](uint32_t s, auto pass) { pass_masks[s] = hn::RebindMask(df, pass); };
     const auto passed = [&](uint32_t s) { return pass_masks[s]; };
 #endif
-    // The one sample's passing lanes; multisample: the lanes where any sample passed.
+    // The one sample's passing lanes (its coverage until the depth test); multisample: the lanes
+    // where any sample passed, gathered from none.
     auto pass_one = hn::RebindMask(df, cov_any);
+    if constexpr (kMulti) pass_one = hn::FirstN(df, 0);
     if constexpr (kCount && !kMulti)
       st.covered += static_cast<uint32_t>(hn::CountTrue(di, cov_any));
     if constexpr (kDepth != DepthMode::kOff) {
@@ -1184,7 +1192,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
         if constexpr (kCount) st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
         if constexpr (kMulti) {
           keep(s, pass);
-          pass_one = s == 0 ? pass : hn::Or(pass_one, pass);
+          pass_one = hn::Or(pass_one, pass);
         } else {
           pass_one = pass;
         }
@@ -1225,7 +1233,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
           st.passed += static_cast<uint32_t>(hn::CountTrue(di, pass));
         }
         keep(s, pass);
-        pass_one = s == 0 ? hn::RebindMask(df, pass) : hn::Or(pass_one, hn::RebindMask(df, pass));
+        pass_one = hn::Or(pass_one, hn::RebindMask(df, pass));
       }
     } else if constexpr (kCount) {
       st.passed += static_cast<uint32_t>(hn::CountTrue(di, cov_any));
@@ -1276,14 +1284,11 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
           hn::Store(fy, df, lane_fy);
           hn::Store(hn::VecFromMask(di, in_a), di, lane_a);
           hn::Store(hn::VecFromMask(di, hn::RebindMask(di, beyond)), di, lane_beyond);
-          auto lane_passes = hn::Zero(du);  // bit s: sample s passed
           if constexpr (kMulti) {
-            for (uint32_t s = 0; s < samples; ++s) {
-              lane_passes = hn::Or(lane_passes, hn::IfThenElseZero(hn::RebindMask(du, passed(s)),
-                                                                   hn::Set(du, 1u << s)));
-            }
+            hn::Store(sample_bits(du, samples, passed), du, passing);
+          } else {
+            hn::Store(hn::Zero(du), du, passing);
           }
-          hn::Store(lane_passes, du, passing);
           for (size_t l = 0; l < hn::Lanes(df); ++l) {
             if (lane_beyond[l] == 0) continue;
             const uint32_t s = kMulti ? static_cast<uint32_t>(std::countr_zero(passing[l])) : 0;
