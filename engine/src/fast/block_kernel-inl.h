@@ -1284,17 +1284,13 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
           alignas(64) float channel[4][64];
           alignas(64) float lane_fx[64], lane_fy[64];
           alignas(64) int32_t lane_a[64], lane_beyond[64];
-          alignas(64) uint32_t passing[64];
+          alignas(64) uint32_t passing[64];  // multisample only: bit s, sample s passed
           store_channels(df, red, green, blue, alpha, channel);
           hn::Store(fx, df, lane_fx);
           hn::Store(fy, df, lane_fy);
           hn::Store(hn::VecFromMask(di, in_a), di, lane_a);
           hn::Store(hn::VecFromMask(di, hn::RebindMask(di, beyond)), di, lane_beyond);
-          if constexpr (kMulti) {
-            hn::Store(sample_bits(du, samples, passed), du, passing);
-          } else {
-            hn::Store(hn::Zero(du), du, passing);
-          }
+          if constexpr (kMulti) hn::Store(sample_bits(du, samples, passed), du, passing);
           for (size_t l = 0; l < hn::Lanes(df); ++l) {
             if (lane_beyond[l] == 0) continue;
             const uint32_t s = kMulti ? static_cast<uint32_t>(std::countr_zero(passing[l])) : 0;
