@@ -1216,15 +1216,11 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
           test_sample(s, load_plane(s));
       }
       if constexpr (kDepth == DepthMode::kTestWrite) {
-        // Both blocks when a sample of the window was written (any passing sample was): one
-        // branch, not one per block. A block marked without a change gets the same bounds when
-        // a Hi-Z test recomputes them, so verdicts and counters are unchanged (`small`, one
-        // thread: 0.95x to 0.96x the time at one sample, 0.92x to 0.99x at four).
-        // Multisample: marked with no branch on the depth test (see the colour below).
-        if (kMulti || !hn::AllFalse(df, pass_one)) {
-          mark_hiz_dirty(tc, block_a);
-          if (two) mark_hiz_dirty(tc, block_b);
-        }
+        // Both blocks, whether or not a sample was written: no branch on the depth test (see
+        // the colour below). A block marked without a change gets the same bounds when a Hi-Z
+        // test recomputes them, so verdicts and counters are unchanged.
+        mark_hiz_dirty(tc, block_a);
+        if (two) mark_hiz_dirty(tc, block_b);
       }
     } else if constexpr (kMulti) {
       for (uint32_t s = 0; s < samples; ++s) {
@@ -1241,13 +1237,16 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
     }
 
     if constexpr (kColor == ColorMode::kRGBA8) {
-      // Multisample: shaded whether or not a sample passed (the stores are then empty), so
-      // that no branch waits on the depth test, a late and often mispredicted one. With the
-      // Hi-Z marks above, `small` at four samples 0.97x to 1.04x the time at one thread (median
-      // about 0.99x in 22 rounds) and 0.94x to 1.02x at two, `tiny` 0.97x to 0.99x; either
-      // alone was slower (the colour alone 1.11x to 1.15x, the marks alone 1.01x to 1.03x).
+      // Shaded whether or not a sample passed (the stores are then empty), so that no branch
+      // waits on the depth test, a late and often mispredicted one. With the Hi-Z marks above,
+      // `small` at one sample 0.90x to 0.99x the time at one thread (median about 0.92x) and
+      // about 0.94x at two, `tiny` about 0.98x, `grid` within the noise, `medium` about 1.015x
+      // (Hi-Z recomputes the bounds of blocks marked with no change; a branch-free select
+      // that marks only changed blocks made `small` 1.02x slower). At four samples 0.97x to
+      // 1.04x (median about 0.99x in 22 rounds) and 0.94x to 1.02x at two threads. Either
+      // alone was slower (one sample: the colour alone 1.15x; four: the colour alone 1.11x to
+      // 1.15x, the marks alone 1.01x to 1.03x).
       const auto any = pass_one;
-      if (!kMulti && hn::AllFalse(df, any)) continue;
       if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(df, any));
       if (by != colour_row) {
         colour_row = by;
