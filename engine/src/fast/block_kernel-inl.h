@@ -1240,7 +1240,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       // Shaded whether or not a sample passed (the stores are then empty), so that no branch
       // waits on the depth test, a late and often mispredicted one. With the Hi-Z marks above,
       // `small` at one sample 0.90x to 0.99x the time at one thread (median about 0.92x) and
-      // about 0.94x at two, `tiny` about 0.98x, `grid` within the noise, `medium` about 1.015x
+      // about 0.95x at two, `tiny` about 0.98x, `grid` within the noise, `medium` about 1.02x
       // (Hi-Z recomputes the bounds of blocks marked with no change; a branch-free select
       // that marks only changed blocks made `small` 1.02x slower). At four samples 0.97x to
       // 1.04x (median about 0.99x in 22 rounds) and 0.94x to 1.02x at two threads. Either
