@@ -17,36 +17,50 @@ void prefetch_for_write(const void* p, size_t bytes) {
   }
 }
 
-// Fetches a setup's three cache lines.
+// Fetches a setup's three cache lines, into every level (kLocality 3) or only as far as L2
+// (kLocality 1, prefetcht2 on x86).
+template <int kLocality = 3>
 inline void prefetch_setup(const TriangleSetup* setup) {
   const char* record = reinterpret_cast<const char*>(setup);
   for (size_t line = 0; line < sizeof(TriangleSetup); line += 64)
-    __builtin_prefetch(record + line);
+    __builtin_prefetch(record + line, 0, kLocality);
 }
 
 // One chunk's list for the tile: each reference to a setup goes to `kernel`, each to a record
 // (kPixelRecordBit) to `record_kernel`. Records were written long before this tile reads them:
-// each is fetched a few references ahead. A setup spans three cache lines and is fetched 6
-// ahead (measured 2% faster than 4 on `tiny`, the same elsewhere; 2 and 12 slower). A record
-// is one line: a pixel record is fetched 64 ahead (`tiny` 0.94x to 1.01x the time of 16 ahead
-// at two threads, about 0.98x at one; `grid` within 2%), a sample record, whose samples take
-// longer to draw, 16 ahead (64 made `tiny` at four samples 1-3% slower). The first ones are
-// fetched before the loop.
-template <class Record, class RecordKernel>
+// each is fetched a few references ahead. The first ones are fetched before the loop.
+// - A setup spans three cache lines and is fetched 6 ahead (measured 2% faster than 4 on
+//   `tiny`, the same elsewhere; 2 and 12 slower).
+// - With kFar (one sample per pixel), it is first fetched into L2 only, 24 ahead: `small` about
+//   0.96x the time at one thread and 0.95x at two, `tiny` about 0.975x, `grid` and `medium` the
+//   same. 16 and 32 ahead measured the same as 24; the far fetch into L1 as well, about 1.02x
+//   slower. With more samples, whose tiles take much of L2, the far fetch made `small` slower
+//   (about 1.015x at one thread, up to 1.08x at two).
+// - A record is one line: a pixel record is fetched 64 ahead (`tiny` 0.94x to 1.01x the time of
+//   16 ahead at two threads, about 0.98x at one; `grid` within 2%), a sample record, whose
+//   samples take longer to draw, 16 ahead (64 made `tiny` at four samples 1-3% slower).
+template <bool kFar, class Record, class RecordKernel>
 void draw_list(const TileContext& tc, std::span<const uint32_t> list, const TriangleSetup* setups,
                TriangleKernel kernel, const Record* records, RecordKernel record_kernel,
                Counters& counters) {
   constexpr size_t kSetupAhead = 6;
+  constexpr size_t kSetupFar = kFar ? 24 : 0;
   constexpr size_t kRecordAhead = std::is_same_v<Record, PixelRecord> ? 64 : 16;
-  for (size_t n = 0; n < list.size() && n < kRecordAhead; ++n) {
+  for (size_t n = 0; n < list.size() && n < std::max(kRecordAhead, kSetupFar); ++n) {
     const uint32_t ahead = list[n];
     if ((ahead & kPixelRecordBit) != 0) {
-      __builtin_prefetch(records + (ahead & ~kPixelRecordBit));
+      if (n < kRecordAhead) __builtin_prefetch(records + (ahead & ~kPixelRecordBit));
     } else if (n < kSetupAhead) {
       prefetch_setup(setups + ahead);
+    } else if (n < kSetupFar) {
+      prefetch_setup<1>(setups + ahead);
     }
   }
   for (size_t n = 0; n < list.size(); ++n) {
+    if (kFar && n + kSetupFar < list.size()) {
+      const uint32_t far = list[n + kSetupFar];
+      if ((far & kPixelRecordBit) == 0) prefetch_setup<1>(setups + far);
+    }
     if (n + kSetupAhead < list.size()) {
       const uint32_t ahead = list[n + kSetupAhead];
       if ((ahead & kPixelRecordBit) == 0) prefetch_setup(setups + ahead);
@@ -117,9 +131,11 @@ void raster_tile(const TileContext& draw, TriangleKernel kernel, PixelKernel pix
       for (const ChunkView& chunk : chunks) {
         const std::span<const uint32_t> list = chunk.bins->tile(tile);
         if (sample_kernel != nullptr) {
-          draw_list(tc, list, chunk.setups, kernel, chunk.samples, sample_kernel, counters);
+          draw_list<false>(tc, list, chunk.setups, kernel, chunk.samples, sample_kernel, counters);
+        } else if (fb.desc.samples == 1) {
+          draw_list<true>(tc, list, chunk.setups, kernel, chunk.pixels, pixel_kernel, counters);
         } else {
-          draw_list(tc, list, chunk.setups, kernel, chunk.pixels, pixel_kernel, counters);
+          draw_list<false>(tc, list, chunk.setups, kernel, chunk.pixels, pixel_kernel, counters);
         }
       }
     }
