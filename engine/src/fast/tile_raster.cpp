@@ -32,7 +32,7 @@ inline void prefetch_setup(const TriangleSetup* setup) {
 // - A setup spans three cache lines and is fetched 6 ahead (measured 2% faster than 4 on
 //   `tiny`, the same elsewhere; 2 and 12 slower).
 // - With kFar (one sample per pixel), it is first fetched into L2 only, 24 ahead: `small` about
-//   0.96x the time at one thread and 0.95x at two, `tiny` about 0.975x, `grid` and `medium` the
+//   0.95x the time at one thread and at two, `tiny` about 0.975x, `grid` and `medium` the
 //   same. 16 and 32 ahead measured the same as 24; the far fetch into L1 as well, about 1.02x
 //   slower. With more samples, whose tiles take much of L2, the far fetch made `small` slower
 //   (about 1.015x at one thread, up to 1.08x at two).
