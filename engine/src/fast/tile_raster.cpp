@@ -27,7 +27,6 @@ inline void prefetch_setup(const TriangleSetup* setup) {
 }
 
 // One chunk's list for the tile, with the chunk's setups and records.
-// One chunk's list for the tile, with the chunk's setups and records.
 template <class Record>
 struct ListView {
   std::span<const uint32_t> list;
