@@ -585,13 +585,12 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     using VS = hn::Vec<decltype(ds)>;
     // A tested lane's value as an integer (0 in the other lanes, whose values may not fit).
     const auto as_int = [&](V v) { return small_to_int64(d64, hn::IfThenElseZero(tested, v)); };
-    const auto pair = [&](auto lo, auto hi) {
+    // An integer lane's value (which fits int32) in both halves of its 64-bit lane.
+    const auto both_halves = [&](hn::Vec<decltype(d64)> v) {
       if constexpr (kPerLane == 1) {
-        (void)hi;
-        return lo;
+        return v;
       } else {
-        return hn::BitCast(ds,
-                           hn::Or(hn::And(lo, hn::Set(d64, 0xFFFFFFFF)), hn::ShiftLeft<32>(hi)));
+        return hn::DupEven(hn::BitCast(ds, v));
       }
     };
     // The sign bits of a lane's samples as bits 0 (and 1) of its 64-bit lane.
@@ -619,23 +618,30 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     // general loop subtracts (row_pairs has none to subtract and forms none).
     VS least[3][4 / kPerLane], row[3], step_x[3], step_y[3];
     const uint32_t offset_groups = row_pairs ? 0 : groups;
+    // The edge's deltas and its value at the first pixel centre are converted once; the steps
+    // and sample offsets are formed from them in the integer lanes, where they are exact (the
+    // bounds above), so they are the values the double lanes would give.
     for (int k = 0; k < 3; ++k) {
+      const VS dx = both_halves(as_int(edge_dx[k])), dy = both_halves(as_int(edge_dy[k]));
+      const VS at = both_halves(as_int(edge_at[k]));
       for (uint32_t j = 0; j < offset_groups; ++j) {
-        const auto offset = [&](uint32_t s) {
-          const V sx = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dx[s]} << shift));
-          const V sy = hn::Set(d, static_cast<double>(int64_t{ctx.sample_dy[s]} << shift));
-          return hn::Sub(hn::Mul(edge_dy[k], sx), hn::Mul(edge_dx[k], sy));
+        // Sample kPerLane * j's offset in the low halves, the next sample's (or the same
+        // sample's, past the last) in the high halves: dy dx_s - dx dy_s.
+        const uint32_t s0 = kPerLane * j, s1 = s0 + 1 < samples ? s0 + 1 : s0;
+        const auto per_sample = [&](const std::array<int32_t, 16>& offset) {
+          const auto low = hn::Set(ds, offset[s0] * (int32_t{1} << shift));
+          if constexpr (kPerLane == 1) {
+            return low;
+          } else {
+            return hn::OddEven(hn::Set(ds, offset[s1] * (int32_t{1} << shift)), low);
+          }
         };
-        const auto first = as_int(offset(kPerLane * j));
         least[k][j] =
-            pair(first, kPerLane * j + 1 < samples ? as_int(offset(kPerLane * j + 1)) : first);
+            hn::Sub(hn::Mul(dy, per_sample(ctx.sample_dx)), hn::Mul(dx, per_sample(ctx.sample_dy)));
       }
-      const auto at = as_int(edge_at[k]);
-      const auto sx = as_int(hn::Mul(edge_dy[k], hn::Set(d, scale)));
-      const auto sy = as_int(hn::Mul(edge_dx[k], hn::Set(d, scale)));
-      row[k] = row_pairs ? pair(at, hn::Add(at, sy)) : pair(at, at);
-      step_x[k] = pair(sx, sx);
-      step_y[k] = pair(sy, sy);
+      step_x[k] = hn::ShiftLeftSame(dy, bits);
+      step_y[k] = hn::ShiftLeftSame(dx, bits);
+      row[k] = row_pairs ? hn::OddEven(hn::Add(at, step_y[k]), at) : at;
     }
     const auto pixel_samples = hn::Set(d64, (int64_t{1} << samples) - 1);
     // Every tested pixel's samples, bit pixel * samples + s; sample_mask holds the first
