@@ -574,9 +574,9 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
             ? hn::And(hn::And(hn::Le(last_x, two), hn::Le(last_y, hn::Set(d, 3.0))), small)
             : fits;
     const uint32_t tested_pixels = ctx.sample_records ? kSampleRecordBoxPixels : setup_pixels;
-    // Lanes of two samples each: 32-bit lanes, the low 32 bits of lo's and hi's box lanes side
-    // by side (0 in the other lanes). Targets with one lane per vector (HWY_SCALAR) test one
-    // sample per 64-bit lane.
+    // Lanes of two samples each: each 64-bit box lane split into two 32-bit lanes, one sample's
+    // values in each. Targets with one lane per vector (HWY_SCALAR) test one sample per 64-bit
+    // lane.
     constexpr uint32_t kPerLane = HWY_TARGET == HWY_SCALAR ? 1 : 2;
     const hn::RebindToSigned<decltype(d)> d64;
     const std::conditional_t<kPerLane == 2, hn::Repartition<int32_t, decltype(d)>, decltype(d64)>
@@ -618,27 +618,31 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     // general loop subtracts (row_pairs has none to subtract and forms none).
     VS least[3][4 / kPerLane], row[3], step_x[3], step_y[3];
     const uint32_t offset_groups = row_pairs ? 0 : groups;
+    // Each group's sample positions (from the pixel centre, in subpixel units), the same for
+    // every edge: sample kPerLane * j's in the low halves, the next sample's (or the same
+    // sample's, past the last) in the high halves.
+    VS group_dx[4 / kPerLane], group_dy[4 / kPerLane];
+    for (uint32_t j = 0; j < offset_groups; ++j) {
+      const uint32_t s0 = kPerLane * j, s1 = s0 + 1 < samples ? s0 + 1 : s0;
+      const auto per_sample = [&](const std::array<int32_t, 16>& offset) {
+        const auto low = hn::Set(ds, offset[s0] * (int32_t{1} << shift));
+        if constexpr (kPerLane == 1) {
+          return low;
+        } else {
+          return hn::OddEven(hn::Set(ds, offset[s1] * (int32_t{1} << shift)), low);
+        }
+      };
+      group_dx[j] = per_sample(ctx.sample_dx);
+      group_dy[j] = per_sample(ctx.sample_dy);
+    }
     // The edge's deltas and its value at the first pixel centre are converted once; the steps
-    // and sample offsets are formed from them in the integer lanes, where they are exact (the
-    // bounds above), so they are the values the double lanes would give.
+    // and sample offsets (dy dx_s - dx dy_s) are formed from them in the integer lanes, where
+    // they are exact (the bounds above), so they are the values the double lanes would give.
     for (int k = 0; k < 3; ++k) {
       const VS dx = both_halves(as_int(edge_dx[k])), dy = both_halves(as_int(edge_dy[k]));
       const VS at = both_halves(as_int(edge_at[k]));
-      for (uint32_t j = 0; j < offset_groups; ++j) {
-        // Sample kPerLane * j's offset in the low halves, the next sample's (or the same
-        // sample's, past the last) in the high halves: dy dx_s - dx dy_s.
-        const uint32_t s0 = kPerLane * j, s1 = s0 + 1 < samples ? s0 + 1 : s0;
-        const auto per_sample = [&](const std::array<int32_t, 16>& offset) {
-          const auto low = hn::Set(ds, offset[s0] * (int32_t{1} << shift));
-          if constexpr (kPerLane == 1) {
-            return low;
-          } else {
-            return hn::OddEven(hn::Set(ds, offset[s1] * (int32_t{1} << shift)), low);
-          }
-        };
-        least[k][j] =
-            hn::Sub(hn::Mul(dy, per_sample(ctx.sample_dx)), hn::Mul(dx, per_sample(ctx.sample_dy)));
-      }
+      for (uint32_t j = 0; j < offset_groups; ++j)
+        least[k][j] = hn::Sub(hn::Mul(dy, group_dx[j]), hn::Mul(dx, group_dy[j]));
       step_x[k] = hn::ShiftLeftSame(dy, bits);
       step_y[k] = hn::ShiftLeftSame(dx, bits);
       row[k] = row_pairs ? hn::OddEven(hn::Add(at, step_y[k]), at) : at;
