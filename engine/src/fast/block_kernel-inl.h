@@ -479,12 +479,13 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
           pass = hn::And(pass, depth_passes(df, kMulti ? compare : tc.compare, z, stored));
         }
         if constexpr (kDepth == DepthMode::kTestWrite) {
-          if constexpr (!kOffsets) {
-            // Small triangles' samples are stored unconditionally: whether any lane passes
-            // varies from lane group to lane group and sample to sample, a branch on it is
-            // often mispredicted, and an empty masked store costs less (4 samples: small 4%,
-            // tiny 7% faster; 1 sample: small 2%). In the general path's blocks, which Hi-Z has
-            // sorted, the branch measured faster.
+          if constexpr (!kOffsets || !kMulti) {
+            // Samples are stored unconditionally: whether any lane passes varies from lane
+            // group to lane group and sample to sample, a branch on it is often mispredicted,
+            // and an empty masked store costs less (small triangles at 4 samples: small 4%,
+            // tiny 7% faster; at 1 sample: small 2%; the general path at one sample: huge
+            // about 0.96x, large 0.94x to 1.00x, medium the same, benchmarks/RESULTS.md). In the
+            // general path's multisample blocks the branch measured faster (medium 1.03x).
             hn::BlendedStore(z, pass, df, plane);
             wrote |= !hn::AllFalse(df, pass);
           } else if (!hn::AllFalse(df, pass)) {
