@@ -1008,6 +1008,13 @@ HWY_INLINE hn::Mask<D> and_greater([[maybe_unused]] D d, hn::Mask<D> m, hn::Vec<
   return hn::And(m, hn::Gt(a, b));
 }
 
+// Whether raster_window's windows for triangle t in this tile span two blocks: the box (inside
+// the tile) does not begin at a block's first column and reaches the next block.
+HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSetup& t) {
+  const int32_t px0 = std::max(t.x0, tc.x0), px1 = std::min(t.x1, tc.x1);  // set_up_state's
+  return (px0 & 7) != 0 && ((px0 >> 3) + 1) * 8 <= px1;
+}
+
 // The small path's lane groups at one sample or several, for an RGBA8 or no colour target:
 // windows of 8 pixels across and lanes / 8 rows, at the bounding box's first column (not at a
 // block's) and at an even row (every lanes / 8-th), so that a narrow box takes one window per
@@ -1019,7 +1026,13 @@ HWY_INLINE hn::Mask<D> and_greater([[maybe_unused]] D d, hn::Mask<D> m, hn::Vec<
 // values are raster_block's for its pixel and sample (its own block's plane bases, then the offsets
 // to the sample in that block), and the counters are raster_small's, so the bytes and counts are
 // the same. Targets with 8 or 16 lanes.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class Compare>
+//
+// kTwo: the windows span two blocks (window_spans_two_blocks), one copy of the loop for each
+// case, so that a box inside one block column reads its depth with one unmasked load of the
+// window's aligned line and writes under the pass mask alone, with no per-window choice
+// between one block and two (`small` about 0.97x the time at one sample and at four,
+// benchmarks/RESULTS.md).
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kTwo, class Compare>
 HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Counters& counters,
                               [[maybe_unused]] Compare compare) {
   static_assert(kColor != ColorMode::kRGBA32F, "windows write RGBA8 colour");
@@ -1093,7 +1106,8 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   // The windows' blocks: a, and b to its right when some lane of the box lies there; their
   // first pixels' offsets from the plane origin in x.
   const int32_t window_bx = px0 >> 3;
-  const bool two = first_col != 0 && (window_bx + 1) * 8 <= px1;
+  constexpr bool two = kTwo;
+  HWY_DASSERT(two == (first_col != 0 && (window_bx + 1) * 8 <= px1));
   const double dx = window_bx * 8.0 - t.x0;
   // What every window repeats, formed once: the gradients (read here, not through `t` in the
   // loop, where the compiler must assume the depth and colour stores may change them) and
@@ -1183,8 +1197,10 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       // Sample s's stored values at the lanes' pixels.
       const auto load_plane = [&](uint32_t s) {
         const float* const plane = tc.depth + s * kSamplePlane;
-        auto v = hn::MaskedLoad(in_a_f, df, plane + at_a);
-        return two ? hn::IfThenElse(in_a_f, v, hn::MaskedLoad(in_b_f, df, plane + at_b)) : v;
+        // One block: the box's lanes are all in it (in_a), in one aligned line.
+        if constexpr (!two) return hn::Load(df, plane + at_a);
+        const auto v = hn::MaskedLoad(in_a_f, df, plane + at_a);
+        return hn::IfThenElse(in_a_f, v, hn::MaskedLoad(in_b_f, df, plane + at_b));
       };
       const auto test_sample = [&](uint32_t s, auto stored) {
         auto pass = pass_one;
@@ -1199,7 +1215,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
         float* const plane = tc.depth + s * kSamplePlane;
         pass = hn::And(pass, compare(df, z, stored));
         if constexpr (kDepth == DepthMode::kTestWrite) {
-          hn::BlendedStore(z, hn::And(pass, in_a_f), df, plane + at_a);
+          hn::BlendedStore(z, two ? hn::And(pass, in_a_f) : pass, df, plane + at_a);
           if (two) hn::BlendedStore(z, hn::And(pass, in_b_f), df, plane + at_b);
         }
         if constexpr (kCount) st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
@@ -1325,7 +1341,8 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       for (uint32_t s = 0; s < samples; ++s) {
         const auto m = kMulti ? passed(s) : any;
         uint32_t* const target = colour + s * kSamplePlane;
-        hn::BlendedStore(packed, hn::RebindMask(du, hn::And(m, in_a_f)), du, target + at_a);
+        hn::BlendedStore(packed, hn::RebindMask(du, two ? hn::And(m, in_a_f) : m), du,
+                         target + at_a);
         if (two) {
           hn::BlendedStore(packed, hn::RebindMask(du, hn::And(m, in_b_f)), du, target + at_b);
         }
@@ -1688,8 +1705,13 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
     if constexpr (kColor != ColorMode::kRGBA32F) {
       const size_t lanes = hn::Lanes(hn::ScalableTag<int32_t>());
       if ((lanes == 8 || lanes == 16) && t.x1 - t.x0 < kWindowBox) {
+        const bool two = window_spans_two_blocks(tc, t);
         with_compare<kDepth>(tc, [&](auto compare) {
-          raster_window<kDepth, kColor, kMulti, kCount>(tc, t, counters, compare);
+          if (two) {
+            raster_window<kDepth, kColor, kMulti, kCount, true>(tc, t, counters, compare);
+          } else {
+            raster_window<kDepth, kColor, kMulti, kCount, false>(tc, t, counters, compare);
+          }
         });
         return;
       }
