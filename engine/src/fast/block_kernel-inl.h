@@ -1008,6 +1008,17 @@ HWY_INLINE hn::Mask<D> and_greater([[maybe_unused]] D d, hn::Mask<D> m, hn::Vec<
   return hn::And(m, hn::Gt(a, b));
 }
 
+// Whether a covered sample's depth may need the clamp to [0, 1] in raster_window. A covered
+// sample lies in the triangle, where the depth plane lies between the vertices' depths; the
+// lanes' float sums are within hiz_margin of the plane (the block base in double, then offsets
+// of under 8 px; the gradients' float rounding over a small triangle's 40 px is below it too).
+// With that room inside (0, 1) the clamp changes no covered lane, and is left out (`small` at
+// four samples 0.95x to 0.98x the time, benchmarks/RESULTS.md).
+HWY_INLINE bool window_depth_may_clamp(const TriangleSetup& t) {
+  const double z_margin = hiz_margin(t);
+  return !(t.z_min - z_margin > 0.0 && t.z_max + z_margin < 1.0);
+}
+
 // Whether raster_window's windows for triangle t in this tile span two blocks: the box (inside
 // the tile) does not begin at a block's first column and reaches the next block.
 HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSetup& t) {
@@ -1033,11 +1044,12 @@ HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSet
 // between one block and two (`small` about 0.97x the time at one sample and at four,
 // benchmarks/RESULTS.md).
 //
-// kFlat: q is known to be flat (t.flat_q), so the loop holds no perspective division. The
-// multisample path takes a copy of its own for such triangles (`small` at four samples about
-// 0.97x the time); at one sample that copy measured no faster (about 1.005x), and the
-// triangle's flag is tested in the loop instead.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kTwo, bool kFlat,
+// kSimple: q is flat (t.flat_q), the depth buffer float and no covered sample's depth needs the
+// clamp (window_depth_may_clamp), so the loop holds no perspective division, depth rounding or
+// clamp. The multisample path takes a copy of its own for such triangles (`small` at four
+// samples about 0.97x the time); at one sample a copy for flat q measured no faster (about
+// 1.005x), and the loop tests the triangle's values instead.
+template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kTwo, bool kSimple,
           class Compare>
 HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Counters& counters,
                               [[maybe_unused]] Compare compare) {
@@ -1100,15 +1112,8 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   int32_t e_row[3];
   for (int e = 0; e < 3; ++e)
     e_row[e] = static_cast<int32_t>(t.a[e] * ox + t.b[e] * oy + t.c[e]);
-  const float depth_scale = tc.depth_scale;
-  // Whether a covered sample's depth may need the clamp to [0, 1]. A covered sample lies in
-  // the triangle, where the depth plane lies between the vertices' depths; the lanes' float sums
-  // are within hiz_margin of the plane (the block base in double, then offsets of under 8 px;
-  // the gradients' float rounding over a small triangle's 40 px is below it too). With that
-  // room inside (0, 1) the clamp changes no covered lane, and is left out (`small` at four
-  // samples 0.95x to 0.98x the time, benchmarks/RESULTS.md).
-  const double z_margin = hiz_margin(t);
-  const bool clamp = !(t.z_min - z_margin > 0.0 && t.z_max + z_margin < 1.0);
+  const float depth_scale = kSimple ? 0.0f : tc.depth_scale;
+  const bool clamp = !kSimple && window_depth_may_clamp(t);
   // The windows' blocks: a, and b to its right when some lane of the box lies there; their
   // first pixels' offsets from the plane origin in x.
   const int32_t window_bx = px0 >> 3;
@@ -1291,7 +1296,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
           qa_a[c] = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
           qa_b[c] = t.qa0[c] + (t.qa_dx[c] * fdx_b + t.qa_dy[c] * fdy);
         }
-        if (!(kFlat || t.flat_q)) {
+        if (!(kSimple || t.flat_q)) {
           q_a = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
           q_b = t.q0 + (t.q_dx * fdx_b + t.q_dy * fdy);
         }
@@ -1308,7 +1313,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       auto green = channel_plane(1, col_g);
       auto blue = channel_plane(2, col_b);
       auto alpha = channel_plane(3, col_a);
-      if (!(kFlat || t.flat_q)) {
+      if (!(kSimple || t.flat_q)) {
         const auto q = plane(q_a, q_b, t.q_dx, t.q_dy);
         const auto inv_q = hn::Div(hn::Set(df, 1.0f), q);
         red = hn::Mul(red, inv_q);
@@ -1713,12 +1718,13 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       if ((lanes == 8 || lanes == 16) && t.x1 - t.x0 < kWindowBox) {
         const bool two = window_spans_two_blocks(tc, t);
         with_compare<kDepth>(tc, [&](auto compare) {
-          const bool flat = kMulti && t.flat_q;
-          if (two && flat) {
+          const bool simple =
+              kMulti && t.flat_q && tc.depth_scale == 0.0f && !window_depth_may_clamp(t);
+          if (two && simple) {
             raster_window<kDepth, kColor, kMulti, kCount, true, true>(tc, t, counters, compare);
           } else if (two) {
             raster_window<kDepth, kColor, kMulti, kCount, true, false>(tc, t, counters, compare);
-          } else if (flat) {
+          } else if (simple) {
             raster_window<kDepth, kColor, kMulti, kCount, false, true>(tc, t, counters, compare);
           } else {
             raster_window<kDepth, kColor, kMulti, kCount, false, false>(tc, t, counters, compare);
