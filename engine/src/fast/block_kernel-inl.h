@@ -1044,11 +1044,12 @@ HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSet
 // between one block and two (`small` about 0.97x the time at one sample and at four,
 // benchmarks/RESULTS.md).
 //
-// kSimple: q is flat (t.flat_q), the depth buffer float and no covered sample's depth needs the
-// clamp (window_depth_may_clamp), so the loop holds no perspective division, depth rounding or
-// clamp. The multisample path takes a copy of its own for such triangles (`small` at four
-// samples about 0.97x the time); at one sample a copy for flat q measured no faster (about
-// 1.005x), and the loop tests the triangle's values instead.
+// kSimple: four samples, q flat (t.flat_q), the depth buffer float and no covered sample's depth
+// needing the clamp (window_depth_may_clamp), so the loop's sample loops unroll and it holds no
+// perspective division, depth rounding or clamp. At four samples such triangles take this copy
+// (`small` about 0.93x the time); other sample counts do not, as two samples with copies of
+// their own made four samples 1.02x to 1.03x slower. At one sample a copy for flat q measured no
+// faster (about 1.005x), and the loop tests the triangle's values instead.
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kTwo, bool kSimple,
           class Compare>
 HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Counters& counters,
@@ -1059,7 +1060,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   const hn::ScalableTag<float> df;
   const int32_t rows = static_cast<int32_t>(hn::Lanes(di) / 8);  // 1 or 2
   const int shift = static_cast<int>(tc.subpixel_bits) - 4;
-  const uint32_t samples = kMulti ? tc.samples : 1;
+  const uint32_t samples = kSimple ? 4 : kMulti ? tc.samples : 1;
   TriangleState st;
   set_up_state<kMulti, true>(tc, t, st);
   const int32_t px0 = st.px0, px1 = st.px1, py1 = st.py1;
@@ -1718,8 +1719,8 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       if ((lanes == 8 || lanes == 16) && t.x1 - t.x0 < kWindowBox) {
         const bool two = window_spans_two_blocks(tc, t);
         with_compare<kDepth>(tc, [&](auto compare) {
-          const bool simple =
-              kMulti && t.flat_q && tc.depth_scale == 0.0f && !window_depth_may_clamp(t);
+          const bool simple = kMulti && tc.samples == 4 && t.flat_q && tc.depth_scale == 0.0f &&
+                              !window_depth_may_clamp(t);
           if (two && simple) {
             raster_window<kDepth, kColor, kMulti, kCount, true, true>(tc, t, counters, compare);
           } else if (two) {
