@@ -1060,6 +1060,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   const hn::ScalableTag<float> df;
   const int32_t rows = static_cast<int32_t>(hn::Lanes(di) / 8);  // 1 or 2
   const int shift = static_cast<int>(tc.subpixel_bits) - 4;
+  static_assert(kMulti || !kSimple, "the simple copy is for four samples");
   const uint32_t samples = kSimple ? 4 : kMulti ? tc.samples : 1;
   TriangleState st;
   set_up_state<kMulti, true>(tc, t, st);
@@ -1719,14 +1720,15 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       if ((lanes == 8 || lanes == 16) && t.x1 - t.x0 < kWindowBox) {
         const bool two = window_spans_two_blocks(tc, t);
         with_compare<kDepth>(tc, [&](auto compare) {
+          // (One sample: simple is false, and the copies named for it are the general ones.)
           const bool simple = kMulti && tc.samples == 4 && t.flat_q && tc.depth_scale == 0.0f &&
                               !window_depth_may_clamp(t);
           if (two && simple) {
-            raster_window<kDepth, kColor, kMulti, kCount, true, true>(tc, t, counters, compare);
+            raster_window<kDepth, kColor, kMulti, kCount, true, kMulti>(tc, t, counters, compare);
           } else if (two) {
             raster_window<kDepth, kColor, kMulti, kCount, true, false>(tc, t, counters, compare);
           } else if (simple) {
-            raster_window<kDepth, kColor, kMulti, kCount, false, true>(tc, t, counters, compare);
+            raster_window<kDepth, kColor, kMulti, kCount, false, kMulti>(tc, t, counters, compare);
           } else {
             raster_window<kDepth, kColor, kMulti, kCount, false, false>(tc, t, counters, compare);
           }
