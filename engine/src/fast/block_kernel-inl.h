@@ -1120,7 +1120,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   // first pixels' offsets from the plane origin in x.
   const int32_t window_bx = px0 >> 3;
   constexpr bool two = kTwo;
-  HWY_DASSERT(two == (first_col != 0 && (window_bx + 1) * 8 <= px1));
+  HWY_DASSERT(two == window_spans_two_blocks(tc, t));
   const double dx = window_bx * 8.0 - t.x0;
   // What every window repeats, formed once: the gradients (read here, not through `t` in the
   // loop, where the compiler must assume the depth and colour stores may change them) and
