@@ -1044,12 +1044,12 @@ HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSet
 // between one block and two (`small` about 0.97x the time at one sample and at four,
 // benchmarks/RESULTS.md).
 //
-// kSimple: four samples, q flat (t.flat_q), the depth buffer float and no covered sample's depth
-// needing the clamp (window_depth_may_clamp), so the loop's sample loops unroll and it holds no
-// perspective division, depth rounding or clamp. At four samples such triangles take this copy
-// (`small` about 0.93x the time); other sample counts do not, as two samples with copies of
-// their own made four samples 1.02x to 1.03x slower. At one sample a copy for flat q measured no
-// faster (about 1.005x), and the loop tests the triangle's values instead.
+// kSimple: one sample or four, q flat (t.flat_q), the depth buffer float and no covered
+// sample's depth needing the clamp (window_depth_may_clamp), so the loop holds no perspective
+// division, depth rounding or clamp, and at four samples its sample loops unroll. Such
+// triangles take this copy (`small` about 0.93x the time at four samples, about 0.99x at one);
+// other sample counts do not, as two samples with copies of their own made four samples 1.02x
+// to 1.03x slower.
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kTwo, bool kSimple,
           class Compare>
 HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Counters& counters,
@@ -1060,8 +1060,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   const hn::ScalableTag<float> df;
   const int32_t rows = static_cast<int32_t>(hn::Lanes(di) / 8);  // 1 or 2
   const int shift = static_cast<int>(tc.subpixel_bits) - 4;
-  static_assert(kMulti || !kSimple, "the simple copy is for four samples");
-  const uint32_t samples = kSimple ? 4 : kMulti ? tc.samples : 1;
+  const uint32_t samples = kMulti ? (kSimple ? 4 : tc.samples) : 1;
   TriangleState st;
   set_up_state<kMulti, true>(tc, t, st);
   const int32_t px0 = st.px0, px1 = st.px1, py1 = st.py1;
@@ -1720,15 +1719,14 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       if ((lanes == 8 || lanes == 16) && t.x1 - t.x0 < kWindowBox) {
         const bool two = window_spans_two_blocks(tc, t);
         with_compare<kDepth>(tc, [&](auto compare) {
-          // (One sample: simple is false, and the copies named for it are the general ones.)
-          const bool simple = kMulti && tc.samples == 4 && t.flat_q && tc.depth_scale == 0.0f &&
+          const bool simple = (!kMulti || tc.samples == 4) && t.flat_q && tc.depth_scale == 0.0f &&
                               !window_depth_may_clamp(t);
           if (two && simple) {
-            raster_window<kDepth, kColor, kMulti, kCount, true, kMulti>(tc, t, counters, compare);
+            raster_window<kDepth, kColor, kMulti, kCount, true, true>(tc, t, counters, compare);
           } else if (two) {
             raster_window<kDepth, kColor, kMulti, kCount, true, false>(tc, t, counters, compare);
           } else if (simple) {
-            raster_window<kDepth, kColor, kMulti, kCount, false, kMulti>(tc, t, counters, compare);
+            raster_window<kDepth, kColor, kMulti, kCount, false, true>(tc, t, counters, compare);
           } else {
             raster_window<kDepth, kColor, kMulti, kCount, false, false>(tc, t, counters, compare);
           }
