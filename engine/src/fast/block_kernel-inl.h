@@ -1019,6 +1019,23 @@ HWY_INLINE bool window_depth_may_clamp(const TriangleSetup& t) {
   return !(t.z_min - z_margin > 0.0 && t.z_max + z_margin < 1.0);
 }
 
+// Whether raster_window at one sample may pack triangle t's colour into RGBA8 without the clamp
+// to [0, 1]: every channel it forms at a covered pixel centre then lies in [-0.25 / 255,
+// 1 + 0.25 / 255], where the clamp changes no byte (unorm8_low_byte). t.unit_colour says the
+// exact planes lie in [0, 1] at such a centre (inside the triangle, so its barycentric weights,
+// from the unbiased edge functions, are not negative; the setup's double planes are far
+// closer to them than the float error below). The float sums differ from them by at most 9
+// roundings (the plane's three values to float in the setup, raster_window's eight
+// operations), each under 2^-24 of the sum of the terms' magnitudes. With every gradient at
+// most 8 per pixel that sum is at most 1 + 95 * 8 in a small triangle's window box: the value at
+// the box's first pixel is within 40 pixels (along x and y) of a covered centre, and the
+// offsets from it reach at most 15 pixels in x and 40 in y. So the error is at most about 4.1e-4,
+// against 0.25 / 255, 9.8e-4.
+HWY_INLINE bool window_colour_in_unit(const TriangleSetup& t) {
+  static_assert(kUnitColourGradient == 8.0f, "the bound above");
+  return t.unit_colour != 0;
+}
+
 // Whether raster_window's windows for triangle t in this tile span two blocks: the box (inside
 // the tile) does not begin at a block's first column and reaches the next block.
 HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSetup& t) {
@@ -1046,8 +1063,10 @@ HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSet
 //
 // kSimple: one sample or four, q flat (t.flat_q), the depth buffer float and no covered
 // sample's depth needing the clamp (window_depth_may_clamp), so the loop holds no perspective
-// division, depth rounding or clamp, and at four samples its sample loops unroll. Such
-// triangles take this copy (`small` about 0.93x the time at four samples, about 0.99x at one);
+// division, depth rounding or clamp, and at four samples its sample loops unroll. At one sample
+// the colour needs no clamp either (window_colour_in_unit), and RGBA8 packs without it. Such
+// triangles take this copy (`small` about 0.93x the time at four samples; at one, about 0.99x,
+// and about 0.95x more without the colour clamp);
 // other sample counts do not, as two samples with copies of their own made four samples 1.02x
 // to 1.03x slower.
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kTwo, bool kSimple,
@@ -1348,7 +1367,9 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
           load_channels(df, channel, red, green, blue, alpha);
         }
       }
-      const auto packed = pack_unorm8(df, red, green, blue, alpha);
+      // One sample, simple: the stored lanes, covered pixel centres, need no clamp
+      // (window_colour_in_unit).
+      const auto packed = pack_unorm8<!(kSimple && !kMulti)>(df, red, green, blue, alpha);
       uint32_t* const colour = reinterpret_cast<uint32_t*>(tc.rgba8);
       for (uint32_t s = 0; s < samples; ++s) {
         const auto m = kMulti ? passed(s) : any;
@@ -1719,8 +1740,9 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
       if ((lanes == 8 || lanes == 16) && t.x1 - t.x0 < kWindowBox) {
         const bool two = window_spans_two_blocks(tc, t);
         with_compare<kDepth>(tc, [&](auto compare) {
-          const bool simple = (!kMulti || tc.samples == 4) && t.flat_q && tc.depth_scale == 0.0f &&
-                              !window_depth_may_clamp(t);
+          const bool simple =
+              (kMulti ? tc.samples == 4 : kColor == ColorMode::kOff || window_colour_in_unit(t)) &&
+              t.flat_q && tc.depth_scale == 0.0f && !window_depth_may_clamp(t);
           if (two && simple) {
             raster_window<kDepth, kColor, kMulti, kCount, true, true>(tc, t, counters, compare);
           } else if (two) {

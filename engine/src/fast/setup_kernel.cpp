@@ -54,7 +54,7 @@ struct Out {
   alignas(64) uint64_t tiles[kMaxLanes];
   alignas(64) double a[3][kMaxLanes], b[3][kMaxLanes], c[3][kMaxLanes];
   alignas(64) double narrow[kMaxLanes], small[kMaxLanes], flat_q[kMaxLanes], centres[kMaxLanes],
-      sample_bits[kMaxLanes];
+      sample_bits[kMaxLanes], unit_colour[kMaxLanes];
   // The pixel records' bytes, lane l's two 16-byte pieces at pixel_words[k][4 l]; the sample
   // records', its four at sample_words[k][4 l].
   alignas(64) uint32_t pixel_words[2][kMaxLanes * 4];
@@ -153,10 +153,25 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
   put(2, i32(out.x1), i32(out.y1), flags, f32(out.z_dx));
   put(3, f32(out.z_dy), f32(out.z_min), f32(out.z_max), f32(out.q0));
   put(4, f32(out.q_dx), f32(out.q_dy), f32(out.qa0[0]), f32(out.qa0[1]));
-  put(5, f32(out.qa0[2]), f32(out.qa0[3]), f32(out.qa_dx[0]), f32(out.qa_dx[1]));
-  put(6, f32(out.qa_dx[2]), f32(out.qa_dx[3]), f32(out.qa_dy[0]), f32(out.qa_dy[1]));
-  const auto zero = hn::Zero(du);
-  put(7, f32(out.qa_dy[2]), f32(out.qa_dy[3]), i32(out.sample_bits), zero);
+  // The colour gradients as float bits, and the largest magnitude's (as int32, the magnitudes'
+  // bits order as the values: finite floats): unit_colour holds only where it is at most
+  // kUnitColourGradient.
+  hn::Vec<decltype(du)> qa_dx[4], qa_dy[4];
+  auto gradient = hn::Zero(di);
+  const auto magnitude = [&](hn::Vec<decltype(du)> v) {
+    return hn::BitCast(di, hn::And(v, hn::Set(du, 0x7FFFFFFFu)));
+  };
+  for (int c = 0; c < 4; ++c) {
+    qa_dx[c] = f32(out.qa_dx[c]);
+    qa_dy[c] = f32(out.qa_dy[c]);
+    gradient = hn::Max(gradient, hn::Max(magnitude(qa_dx[c]), magnitude(qa_dy[c])));
+  }
+  const auto limit = hn::Set(di, std::bit_cast<int32_t>(kUnitColourGradient));
+  const auto unit =
+      hn::IfThenZeroElse(hn::RebindMask(du, hn::Gt(gradient, limit)), flag(out.unit_colour, 0));
+  put(5, f32(out.qa0[2]), f32(out.qa0[3]), qa_dx[0], qa_dx[1]);
+  put(6, qa_dx[2], qa_dx[3], qa_dy[0], qa_dy[1]);
+  put(7, qa_dy[2], qa_dy[3], i32(out.sample_bits), unit);
 }
 
 // The first word of a record for the lanes from l0 (`origin`: the box's first pixel, x0 | y0 << 16)
@@ -818,7 +833,25 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
   // Setup records only for lanes that are binned and not pixel records (the clipper makes its
   // own): often none, with tiny triangles.
   const auto full = hn::AndNot(any_pixel, binned);
-  if (!hn::AllFalse(d, full)) PackLanes(d, l0, out);
+  if (!hn::AllFalse(d, full)) {
+    if (ctx.samples == 1) {
+      // TriangleSetup::unit_colour, from the vertices' smallest and largest channel values
+      // (finite: the draw's colours are checked), in float lanes.
+      auto lo = color[0][0], hi = color[0][0];
+      for (int k = 0; k < 3; ++k) {
+        for (int c = 0; c < 4; ++c) {
+          lo = hn::Min(lo, color[k][c]);
+          hi = hn::Max(hi, color[k][c]);
+        }
+      }
+      const auto unit = hn::And(
+          flat, hn::And(hn::Ge(hn::PromoteTo(d, lo), zero), hn::Le(hn::PromoteTo(d, hi), one)));
+      hn::Store(as_double_mask(d, unit), d, out.unit_colour + l0);
+    } else {
+      hn::Store(zero, d, out.unit_colour + l0);
+    }
+    PackLanes(d, l0, out);
+  }
 }
 
 // One vector of lanes from l0, from its vertices' positions and colours as x, y, z, w and

@@ -130,7 +130,6 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
     if (t.centres == 0) return;
   }
   t.sample_bits = 0;
-  t.unused = 0;
   t.small = max_delta < (int64_t{32} << bits);
   if (ctx.small_sample_bits() && t.small && t.x1 - t.x0 <= 2 && t.y1 - t.y0 <= 2 &&
       static_cast<uint32_t>((t.y1 - t.y0) * 3 + (t.x1 - t.x0) + 1) * ctx.samples <= 32) {
@@ -178,6 +177,14 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
           t.qa_dy[c]);
     t.qa0[c] = static_cast<float>(at0);
   }
+  bool unit = ctx.samples == 1 && t.flat_q;
+  for (int c = 0; c < 4; ++c) {
+    for (int k = 0; k < 3; ++k)
+      unit = unit && v[k].color[c] >= 0.0 && v[k].color[c] <= 1.0;
+    unit = unit && std::abs(t.qa_dx[c]) <= kUnitColourGradient &&
+           std::abs(t.qa_dy[c]) <= kUnitColourGradient;
+  }
+  t.unit_colour = unit ? 1 : 0;
   out.push_back(t);
 }
 

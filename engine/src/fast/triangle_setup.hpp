@@ -59,8 +59,16 @@ struct TriangleSetup {
   // inside, bit ((y - y0) * 3 + (x - x0)) * samples + s, from exact edge functions. 0 when not
   // known (any other triangle): the kernel then tests the edges itself.
   uint32_t sample_bits;
-  uint32_t unused;  // to 160 bytes: ten 16-byte pieces (setup_kernel.cpp streams them)
+  // 1 when q is flat (q = 1), every vertex's four colour channels lie in [0, 1] (so the exact
+  // colour planes lie in [0, 1] over the triangle) and every channel's gradients in x and y are
+  // at most kUnitColourGradient per pixel; 0 otherwise, or when not known (set at one sample
+  // per pixel only). The kernels' small-triangle path then packs RGBA8 without a clamp
+  // (block_kernel-inl.h, window_colour_in_unit).
+  uint32_t unit_colour;  // (the last 4 bytes: 160 in all, ten 16-byte pieces)
 };
+
+// TriangleSetup::unit_colour's bound on the colour gradients, per pixel.
+inline constexpr float kUnitColourGradient = 8.0f;
 
 // Setups of one worker's range of a draw (large: see aligned_allocator.hpp). The vectorized
 // setup appends uninitialized records and fills them with streaming stores.

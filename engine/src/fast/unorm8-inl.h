@@ -44,15 +44,20 @@ inline constexpr bool kTruncateInOne = false;
 // read off floor(...) + 2^23, whose significand is k (no float-to-integer conversion), and the
 // bits above the low byte hold 2^23's exponent, which a shift left by 8 or more, or a mask,
 // removes.
-template <class DF, class VF>
+// Without kClamp, for lanes known to lie in [-0.25 / 255, 1 + 0.25 / 255] (the sum then lies in
+// [0.25, 255.75]): the clamp is left out, and k is the same.
+template <bool kClamp = true, class DF, class VF>
 HWY_INLINE auto unorm8_low_byte(DF df, VF c) {
+  VF clamped = c;
+  if constexpr (kClamp) {
 #if HWY_ARCH_X86
-  // x86's max returns its second operand when the first is NaN.
-  const auto positive = hn::Max(c, hn::Zero(df));
+    // x86's max returns its second operand when the first is NaN.
+    const auto positive = hn::Max(c, hn::Zero(df));
 #else
-  const auto positive = hn::IfThenElseZero(hn::Gt(c, hn::Zero(df)), c);
+    const auto positive = hn::IfThenElseZero(hn::Gt(c, hn::Zero(df)), c);
 #endif
-  const auto clamped = hn::Min(positive, hn::Set(df, 1.0f));
+    clamped = hn::Min(positive, hn::Set(df, 1.0f));
+  }
   const auto scaled = hn::Add(hn::Mul(clamped, hn::Set(df, 255.0f)), hn::Set(df, 0.5f));
   using VU = hn::Vec<hn::RebindToUnsigned<DF>>;
   if constexpr (kTruncateInOne) {
@@ -65,14 +70,15 @@ HWY_INLINE auto unorm8_low_byte(DF df, VF c) {
 
 // Four channels' lanes as packed RGBA8 (pack_rgba8's bytes): g, b and a shifted left by 8 or
 // more, which drops any bits above their low bytes, and r's masked off where it has such bits.
-template <class DF, class VF>
+// kClamp as unorm8_low_byte's.
+template <bool kClamp = true, class DF, class VF>
 HWY_INLINE auto pack_unorm8(DF df, VF r, VF g, VF b, VF a) {
   const hn::RebindToUnsigned<DF> du;
-  auto red = unorm8_low_byte(df, r);
+  auto red = unorm8_low_byte<kClamp>(df, r);
   if constexpr (!kTruncateInOne) red = hn::And(red, hn::Set(du, 0xFFu));
-  return hn::Or(
-      hn::Or(red, hn::ShiftLeft<8>(unorm8_low_byte(df, g))),
-      hn::Or(hn::ShiftLeft<16>(unorm8_low_byte(df, b)), hn::ShiftLeft<24>(unorm8_low_byte(df, a))));
+  return hn::Or(hn::Or(red, hn::ShiftLeft<8>(unorm8_low_byte<kClamp>(df, g))),
+                hn::Or(hn::ShiftLeft<16>(unorm8_low_byte<kClamp>(df, b)),
+                       hn::ShiftLeft<24>(unorm8_low_byte<kClamp>(df, a))));
 }
 
 }  // namespace tessera::fast::HWY_NAMESPACE
