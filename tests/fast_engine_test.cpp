@@ -596,6 +596,63 @@ TEST(FastEngine, SmallTrianglesReachingTheEndsOfTheDepthRangeStoreTheSameBitsOnE
   }
 }
 
+TEST(FastEngine, SmallTrianglesWithColoursAtTheEndsOfTheUnitRangeStoreTheSameBytesOnEveryTarget) {
+  // Triangles up to 7 px across (the vector targets' window path) with every vertex on a pixel
+  // centre and colour channels at 0 or 1, within a rounding of them, or anywhere between. Where
+  // the setup bounds a triangle's colour to [0, 1] (TriangleSetup::unit_colour), one-sample
+  // windows pack RGBA8 without the clamp, so a sum a rounding beyond the range must give the
+  // clamp's byte there. In one triangle in four some channels lie 1/64 beyond the range, where
+  // packing without the clamp gives other bytes, and slivers take gradients up to about 8 per
+  // pixel, the setup's bound, and past it. The scalar
+  // target, whose path always clamps, is the baseline; every covered pixel is written (kAlways).
+  const float kValues[6] = {0.0f, std::ldexp(1.0f, -26), 1.0f - std::ldexp(1.0f, -24),
+                            1.0f, -1.0f / 64.0f,         1.0f + 1.0f / 64.0f};
+  Scene s;
+  s.pipeline.depth_compare = CompareOp::kAlways;
+  std::mt19937 rng(91);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < 6000; ++i) {
+    const float cx = std::floor(u(rng) * static_cast<float>(s.width - 8)) + 0.5f;
+    const float cy = std::floor(u(rng) * static_cast<float>(s.height - 10)) + 0.5f;
+    float x[3], y[3], c[3][4];
+    const float z[3] = {0.5f, 0.5f, 0.5f}, w[3] = {1.0f, 1.0f, 1.0f};
+    if (i % 3 == 0) {
+      // A sliver from (0, 0) to (1, n), its third vertex at (0, m): the distance from it to
+      // the long edge, m / sqrt(1 + n^2), is 0.12 px and up, so a channel that is 1 there and
+      // 0 at the others has a gradient of up to about 8 per pixel.
+      const float n = static_cast<float>(5 + rng() % 5), m = static_cast<float>(1 + rng() % 3);
+      const float xs[3] = {cx, cx + 1.0f, cx}, ys[3] = {cy, cy + n, cy + m};
+      for (int k = 0; k < 3; ++k) {
+        x[k] = xs[k];
+        y[k] = ys[k];
+        for (int ch = 0; ch < 4; ++ch)
+          c[k][ch] = k == 2 && ch == i % 4 ? 1.0f : 0.0f;
+      }
+    } else {
+      const float rot = u(rng) * 2.0f * std::numbers::pi_v<float>;
+      for (int k = 0; k < 3; ++k) {
+        const float a = rot + static_cast<float>(k) * 2.0f * std::numbers::pi_v<float> / 3.0f;
+        x[k] = cx + 3.0f + std::round(3.0f * std::cos(a));
+        y[k] = cy + 3.0f + std::round(3.0f * std::sin(a));
+        for (int ch = 0; ch < 4; ++ch) {
+          const uint32_t pick = rng() % 8;
+          // Just beyond the range in one triangle in four.
+          c[k][ch] = pick < 4 || (pick < 6 && i % 4 == 1) ? kValues[pick] : u(rng);
+        }
+      }
+    }
+    s.add(x, y, z, w, c);
+  }
+  const Result baseline = render(s, Backend::kFast, {SimdTarget::kScalar, 1});
+  for_each_config([&](const Config& config) {
+    const Result r = render(s, Backend::kFast, config);
+    ASSERT_EQ(r.rgba8.size(), baseline.rgba8.size());
+    const auto [a, b] = std::mismatch(r.rgba8.begin(), r.rgba8.end(), baseline.rgba8.begin());
+    EXPECT_EQ(a, r.rgba8.end()) << "first differing byte " << (a - r.rgba8.begin()) << ": "
+                                << int{*a} << " against " << int{*b};
+  });
+}
+
 TEST(FastEngine, TinyTriangleRecordsDrawTheSameBytesAsTheFullSetups) {
   // Pixel records (one sample) and sample records (two and four) against full setups for
   // every triangle (RendererOptions::tiny_triangle_records off): the same depth bits, colour

@@ -56,8 +56,9 @@ Draw random_draw(uint32_t seed, int count, bool wide_w = false) {
       const float z = i % 50 == 0 && k == 0 && !wide_w ? -2.0f : u(rng);
       d.positions.push_back(
           {(2.0f * x / kWidthF - 1.0f) * w, (1.0f - 2.0f * y / kHeightF) * w, z * w, w});
+      // Every fifth triangle's colours reach beyond [0, 1] (TriangleSetup::unit_colour 0).
       for (int c = 0; c < 4; ++c)
-        d.colors.push_back(u(rng));
+        d.colors.push_back(i % 5 == 0 ? 1.5f * u(rng) - 0.25f : u(rng));
     }
   }
   return d;
@@ -164,12 +165,18 @@ size_t first_difference(const List& a, const List& b) {
 // Sets `draw` up with every compiled target this machine runs, at 1, 2 and 4 samples, with and
 // without records, and expects the same bytes from each as from the first. With
 // `expect_clipped`, the draw must have triangles the scalar clipper takes.
-void expect_same_bytes_on_every_target(const Draw& draw, bool expect_clipped) {
+// The compiled targets this machine runs, HWY_SCALAR among them.
+std::vector<int64_t> runnable_targets() {
   std::vector<int64_t> targets;
 #define TESSERA_ADD_TARGET(bit, ns) targets.push_back(bit);
   TESSERA_FOR_EACH_SIMD_TARGET(TESSERA_ADD_TARGET)
 #undef TESSERA_ADD_TARGET
   std::erase_if(targets, [](int64_t bit) { return (hwy::SupportedTargets() & bit) == 0; });
+  return targets;
+}
+
+void expect_same_bytes_on_every_target(const Draw& draw, bool expect_clipped) {
+  const std::vector<int64_t> targets = runnable_targets();
   ASSERT_NE(std::find(targets.begin(), targets.end(), int64_t{HWY_SCALAR}), targets.end())
       << "HWY_SCALAR is not compiled into this build";
   ASSERT_GE(targets.size(), 2u);
@@ -249,6 +256,95 @@ TEST(SetupKernel, FourRowBoxesBecomeSampleRecords) {
     }
     EXPECT_GT(four_rows, 500u);
   }
+}
+
+// Small triangles at w = 1 (flat q) in window pixels, about 4 to 7 pixels across, placed well
+// inside the screen; `colour(i, k, c)` gives triangle i's vertex k's channel c, and `width` (1
+// for the usual shape) scales the triangles in x.
+template <class Colour>
+Draw small_flat_draw(uint32_t seed, int count, float width, Colour colour) {
+  Draw d;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < count; ++i) {
+    const float cx = 10.0f + u(rng) * (kWidthF - 20.0f), cy = 10.0f + u(rng) * (kHeightF - 20.0f);
+    const float side = 4.0f + 3.0f * u(rng);
+    const float xs[3] = {cx - 0.5f * side * width, cx + 0.5f * side * width,
+                         cx + (u(rng) - 0.5f) * side * width};
+    const float ys[3] = {cy - 0.4f * side, cy - 0.3f * side, cy + 0.5f * side};
+    for (int k = 0; k < 3; ++k) {
+      d.positions.push_back(
+          {2.0f * xs[k] / kWidthF - 1.0f, 1.0f - 2.0f * ys[k] / kHeightF, 0.5f, 1.0f});
+      for (int c = 0; c < 4; ++c)
+        d.colors.push_back(colour(i, k, c));
+    }
+  }
+  return d;
+}
+
+// TriangleSetup::unit_colour on every target: 1 for flat-q triangles whose vertices' channels
+// lie in [0, 1] with gradients of at most kUnitColourGradient per pixel, at one sample only; 0
+// when a channel reaches beyond [0, 1], when a gradient is steeper, when q is not flat.
+TEST(SetupKernel, UnitColourMarksFlatTrianglesWithColoursInTheUnitRange) {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<float> values(4000 * 12);
+  for (float& v : values)
+    v = u(rng);
+  const auto in_unit = [&](int i, int k, int c) {
+    return c == 3 && i % 2 ? 1.0f : values[static_cast<size_t>((i * 3 + k) * 4 + c)];
+  };
+  // One channel of one vertex just past 0 or 1.
+  const auto beyond = [&](int i, int k, int c) {
+    if (k == i % 3 && c == i % 4) return i % 2 ? 1.0f + 1.0f / 1024.0f : -1.0f / 1024.0f;
+    return in_unit(i, k, c);
+  };
+  // 0 and 1 across triangles 1/64 as wide: gradients of about 10 to 16 per pixel.
+  const auto steep = [&](int, int k, int c) { return c == 0 && k == 1 ? 1.0f : 0.0f; };
+  struct Case {
+    const char* name;
+    Draw draw;
+    bool expected;
+  };
+  Case cases[] = {{"in [0, 1]", small_flat_draw(1, 4000, 1.0f, in_unit), true},
+                  {"beyond [0, 1]", small_flat_draw(2, 4000, 1.0f, beyond), false},
+                  {"steep", small_flat_draw(3, 4000, 1.0f / 64.0f, steep), false}};
+  PipelineState pipeline;
+  for (const Case& c : cases) {
+    DrawInput input;
+    input.positions = c.draw.positions;
+    input.attributes = c.draw.colors;
+    input.attribute_count = 4;
+    for (const int64_t target : runnable_targets()) {
+      for (uint32_t samples : {1u, 4u}) {
+        SCOPED_TRACE(std::string(c.name) + ", " + hwy::TargetName(target) + ", " +
+                     std::to_string(samples) + " samples");
+        const Output out = set_up(setup_kernel(target), draw_context(pipeline, samples, false),
+                                  input, c.draw.positions.size() / 3);
+        EXPECT_GT(out.setups.size(), 100u);
+        size_t flagged = 0;
+        for (const TriangleSetup& t : out.setups)
+          flagged += t.unit_colour;
+        EXPECT_EQ(flagged, c.expected && samples == 1 ? out.setups.size() : 0u);
+      }
+    }
+  }
+  // Not flat: w varies per vertex under perspective interpolation.
+  Draw perspective = small_flat_draw(4, 4000, 1.0f, in_unit);
+  for (size_t v = 0; v < perspective.positions.size(); ++v) {
+    const float w = 1.0f + static_cast<float>(v % 3);
+    Float4& p = perspective.positions[v];
+    p = {p.x * w, p.y * w, p.z * w, w};
+  }
+  DrawInput input;
+  input.positions = perspective.positions;
+  input.attributes = perspective.colors;
+  input.attribute_count = 4;
+  const Output out = set_up(setup_kernel(hwy::SupportedTargets() & -hwy::SupportedTargets()),
+                            draw_context(pipeline, 1, false), input, 4000);
+  EXPECT_GT(out.setups.size(), 100u);
+  for (const TriangleSetup& t : out.setups)
+    EXPECT_EQ(t.unit_colour, 0u);
 }
 
 // Targets with a fused multiply-add divide by w once per vertex and correct the products

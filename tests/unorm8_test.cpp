@@ -23,15 +23,27 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 // Packs channel values r[i], g[i], b[i], a[i] into out[i], a vector at a time (n: a multiple
 // of 64, the most float lanes of any target: 2048-bit SVE vectors).
-void PackChannels(const float* r, const float* g, const float* b, const float* a, uint32_t* out,
-                  size_t n) {
+// kClamp as pack_unorm8's.
+template <bool kClamp>
+void PackChannelsWith(const float* r, const float* g, const float* b, const float* a, uint32_t* out,
+                      size_t n) {
   const hn::ScalableTag<float> df;
   const hn::RebindToUnsigned<decltype(df)> du;
   for (size_t i = 0; i < n; i += hn::Lanes(df)) {
-    hn::StoreU(pack_unorm8(df, hn::LoadU(df, r + i), hn::LoadU(df, g + i), hn::LoadU(df, b + i),
-                           hn::LoadU(df, a + i)),
+    hn::StoreU(pack_unorm8<kClamp>(df, hn::LoadU(df, r + i), hn::LoadU(df, g + i),
+                                   hn::LoadU(df, b + i), hn::LoadU(df, a + i)),
                du, out + i);
   }
+}
+
+void PackChannels(const float* r, const float* g, const float* b, const float* a, uint32_t* out,
+                  size_t n) {
+  PackChannelsWith<true>(r, g, b, a, out, n);
+}
+
+void PackChannelsUnclamped(const float* r, const float* g, const float* b, const float* a,
+                           uint32_t* out, size_t n) {
+  PackChannelsWith<false>(r, g, b, a, out, n);
 }
 
 }  // namespace tessera::fast::HWY_NAMESPACE
@@ -42,6 +54,7 @@ HWY_AFTER_NAMESPACE();
 
 namespace tessera::fast {
 HWY_EXPORT(PackChannels);
+HWY_EXPORT(PackChannelsUnclamped);
 
 namespace {
 
@@ -75,8 +88,10 @@ std::vector<float> test_values() {
   return values;
 }
 
-TEST(Unorm8Lanes, PackAsTheScalarConversionOnEveryTarget) {
-  const std::vector<float> values = test_values();
+// Packs every value of `values` (a multiple of 64 of them) in each channel, in another order
+// per channel, with `pack` on every target, and expects the scalar pack_rgba8's bytes.
+template <class Pack>
+void expect_scalar_bytes(const std::vector<float>& values, Pack pack) {
   const size_t n = values.size();
   // Each channel takes the values in another order, so every channel sees every value with
   // different neighbours in the other channels.
@@ -95,14 +110,42 @@ TEST(Unorm8Lanes, PackAsTheScalarConversionOnEveryTarget) {
     hwy::SetSupportedTargetsForTest(target);
     SCOPED_TRACE(hwy::TargetName(target));
     std::vector<uint32_t> packed(n, 0xdeadbeefu);
-    HWY_DYNAMIC_DISPATCH(PackChannels)
-    (channel[0].data(), channel[1].data(), channel[2].data(), channel[3].data(), packed.data(), n);
+    pack(channel[0].data(), channel[1].data(), channel[2].data(), channel[3].data(), packed.data(),
+         n);
     for (size_t i = 0; i < n; ++i) {
       ASSERT_EQ(packed[i], expected[i]) << "r " << channel[0][i] << ", g " << channel[1][i]
                                         << ", b " << channel[2][i] << ", a " << channel[3][i];
     }
   }
   hwy::SetSupportedTargetsForTest(0);
+}
+
+TEST(Unorm8Lanes, PackAsTheScalarConversionOnEveryTarget) {
+  expect_scalar_bytes(test_values(), [](auto... args) {
+    HWY_DYNAMIC_DISPATCH(PackChannels)(args...);
+  });
+}
+
+// Without the clamp, every value in [-0.25 / 255, 1 + 0.25 / 255] (the values of test_values
+// there, and the floats nearest both ends) packs as with it.
+TEST(Unorm8Lanes, PackWithoutTheClampAsTheScalarConversionNearTheUnitRange) {
+  const float lo = -0.25f / 255.0f, hi = 1.0f + 0.25f / 255.0f;
+  std::vector<float> values;
+  for (const float v : test_values()) {
+    if (v >= lo && v <= hi) values.push_back(v);
+  }
+  for (float end : {lo, hi}) {
+    for (int step = 0; step < 8; ++step) {
+      values.push_back(end);
+      end = std::nextafter(end, 0.5f);
+    }
+  }
+  while (values.size() % 64 != 0)
+    values.push_back(0.5f);
+  ASSERT_GT(values.size(), 3000u);
+  expect_scalar_bytes(values, [](auto... args) {
+    HWY_DYNAMIC_DISPATCH(PackChannelsUnclamped)(args...);
+  });
 }
 
 }  // namespace
