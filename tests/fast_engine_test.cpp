@@ -596,15 +596,15 @@ TEST(FastEngine, SmallTrianglesReachingTheEndsOfTheDepthRangeStoreTheSameBitsOnE
   }
 }
 
-TEST(FastEngine, SmallTrianglesWithColoursAtTheEndsOfTheUnitRangeStoreTheSameBytesOnEveryTarget) {
-  // Triangles up to 7 px across (the vector targets' window path) with every vertex on a pixel
-  // centre and colour channels at 0 or 1, within a rounding of them, or anywhere between. Where
-  // the setup bounds a triangle's colour to [0, 1] (TriangleSetup::unit_colour), one-sample
-  // windows pack RGBA8 without the clamp, so a sum a rounding beyond the range must give the
-  // clamp's byte there. In one triangle in four some channels lie 1/64 beyond the range, where
-  // packing without the clamp gives other bytes, and slivers take gradients up to about 8 per
-  // pixel, the setup's bound, and past it. The scalar
-  // target, whose path always clamps, is the baseline; every covered pixel is written (kAlways).
+TEST(FastEngine, TrianglesWithColoursAtTheEndsOfTheUnitRangeStoreTheSameBytesOnEveryTarget) {
+  // Triangles up to 7 px across (the vector targets' window path) and up to 25 (the block path),
+  // every vertex on a pixel centre, with colour channels at 0 or 1, within a rounding of them,
+  // or anywhere between. Where the setup bounds a triangle's colour to [0, 1]
+  // (TriangleSetup::unit_colour), one-sample kernels pack RGBA8 without the clamp, so a sum a
+  // rounding beyond the range must give the clamp's byte there. In one triangle in four some
+  // channels lie 1/64 beyond the range, where packing without the clamp gives other bytes, and
+  // slivers take gradients up to about 8 per pixel. The scalar target, whose path always
+  // clamps, is the baseline; every covered pixel is written (kAlways).
   const float kValues[6] = {0.0f, std::ldexp(1.0f, -26), 1.0f - std::ldexp(1.0f, -24),
                             1.0f, -1.0f / 64.0f,         1.0f + 1.0f / 64.0f};
   Scene s;
@@ -612,8 +612,9 @@ TEST(FastEngine, SmallTrianglesWithColoursAtTheEndsOfTheUnitRangeStoreTheSameByt
   std::mt19937 rng(91);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   for (int i = 0; i < 6000; ++i) {
-    const float cx = std::floor(u(rng) * static_cast<float>(s.width - 8)) + 0.5f;
-    const float cy = std::floor(u(rng) * static_cast<float>(s.height - 10)) + 0.5f;
+    const float radius = i % 3 == 1 ? 12.0f : 3.0f;
+    const float cx = std::floor(u(rng) * (static_cast<float>(s.width) - 2.0f * radius - 2.0f));
+    const float cy = std::floor(u(rng) * (static_cast<float>(s.height) - 2.0f * radius - 2.0f));
     float x[3], y[3], c[3][4];
     const float z[3] = {0.5f, 0.5f, 0.5f}, w[3] = {1.0f, 1.0f, 1.0f};
     if (i % 3 == 0) {
@@ -621,7 +622,8 @@ TEST(FastEngine, SmallTrianglesWithColoursAtTheEndsOfTheUnitRangeStoreTheSameByt
       // the long edge, m / sqrt(1 + n^2), is 0.12 px and up, so a channel that is 1 there and
       // 0 at the others has a gradient of up to about 8 per pixel.
       const float n = static_cast<float>(5 + rng() % 5), m = static_cast<float>(1 + rng() % 3);
-      const float xs[3] = {cx, cx + 1.0f, cx}, ys[3] = {cy, cy + n, cy + m};
+      const float xs[3] = {cx + 0.5f, cx + 1.5f, cx + 0.5f};
+      const float ys[3] = {cy + 0.5f, cy + 0.5f + n, cy + 0.5f + m};
       for (int k = 0; k < 3; ++k) {
         x[k] = xs[k];
         y[k] = ys[k];
@@ -632,8 +634,8 @@ TEST(FastEngine, SmallTrianglesWithColoursAtTheEndsOfTheUnitRangeStoreTheSameByt
       const float rot = u(rng) * 2.0f * std::numbers::pi_v<float>;
       for (int k = 0; k < 3; ++k) {
         const float a = rot + static_cast<float>(k) * 2.0f * std::numbers::pi_v<float> / 3.0f;
-        x[k] = cx + 3.0f + std::round(3.0f * std::cos(a));
-        y[k] = cy + 3.0f + std::round(3.0f * std::sin(a));
+        x[k] = cx + 0.5f + radius + std::round(radius * std::cos(a));
+        y[k] = cy + 0.5f + radius + std::round(radius * std::sin(a));
         for (int ch = 0; ch < 4; ++ch) {
           const uint32_t pick = rng() % 8;
           // Just beyond the range in one triangle in four.

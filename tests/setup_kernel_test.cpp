@@ -283,8 +283,9 @@ Draw small_flat_draw(uint32_t seed, int count, float width, Colour colour) {
 }
 
 // TriangleSetup::unit_colour on every target: 1 for flat-q triangles whose vertices' channels
-// lie in [0, 1] with gradients of at most kUnitColourGradient per pixel, at one sample only; 0
-// when a channel reaches beyond [0, 1], when a gradient is steeper, when q is not flat.
+// lie in [0, 1] and whose largest gradient times the box's reach is at most kUnitColourReach, at
+// one sample only; 0 when a channel reaches beyond [0, 1], when a gradient is steeper, when q
+// is not flat.
 TEST(SetupKernel, UnitColourMarksFlatTrianglesWithColoursInTheUnitRange) {
   std::mt19937 rng(99);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -299,7 +300,8 @@ TEST(SetupKernel, UnitColourMarksFlatTrianglesWithColoursInTheUnitRange) {
     if (k == i % 3 && c == i % 4) return i % 2 ? 1.0f + 1.0f / 1024.0f : -1.0f / 1024.0f;
     return in_unit(i, k, c);
   };
-  // 0 and 1 across triangles 1/64 as wide: gradients of about 10 to 16 per pixel.
+  // 0 and 1 across triangles 1/256 as wide: gradients of about 40 to 64 per pixel, against a
+  // reach of about 20.
   const auto steep = [&](int, int k, int c) { return c == 0 && k == 1 ? 1.0f : 0.0f; };
   struct Case {
     const char* name;
@@ -308,7 +310,7 @@ TEST(SetupKernel, UnitColourMarksFlatTrianglesWithColoursInTheUnitRange) {
   };
   Case cases[] = {{"in [0, 1]", small_flat_draw(1, 4000, 1.0f, in_unit), true},
                   {"beyond [0, 1]", small_flat_draw(2, 4000, 1.0f, beyond), false},
-                  {"steep", small_flat_draw(3, 4000, 1.0f / 64.0f, steep), false}};
+                  {"steep", small_flat_draw(3, 12000, 1.0f / 256.0f, steep), false}};
   PipelineState pipeline;
   for (const Case& c : cases) {
     DrawInput input;

@@ -132,6 +132,24 @@ HWY_INLINE void with_compare(const TileContext& tc, Body&& body) {
   body(AnyCompare{tc.compare});
 }
 
+// Whether, at one sample, triangle t's RGBA8 colour may be packed without the clamp to [0, 1]:
+// every channel formed at a covered pixel centre then lies in [-0.25 / 255, 1 + 0.25 / 255],
+// where the clamp changes no byte (unorm8_low_byte). t.unit_colour says the exact planes lie in
+// [0, 1] at such a centre (inside the triangle, so its barycentric weights, from the unbiased
+// edge functions, are not negative; the setup's double planes are far closer to them than the
+// float error below). A channel's float sum at a pixel of the box (W by H pixels) takes at most
+// 11 roundings: the setup's value at the box's first pixel and its two gradients to float, then
+// base = qa0 + (gx dx + gy dy) at the block's (or window's) first pixel and base + (gx fx +
+// gy fy) at the pixel. Each is under 2^-24 of the sum S of the terms' magnitudes. With G the
+// largest gradient: the value at the box's first pixel is within G (W + H) of a covered
+// centre's, |dx| <= W + 7 and |dy| <= H + 7, and fx, fy <= 7, so S <= 1 + 2 G (W + H + 13),
+// at most 1025 under unit_colour's bound G (W + H + 13) <= 512. The error is then at most
+// 11 * 2^-24 * 1025, about 6.7e-4, against 0.25 / 255, 9.8e-4.
+HWY_INLINE bool packs_without_clamp(const TriangleSetup& t) {
+  static_assert(kUnitColourReach == 512.0f, "the bound above");
+  return t.unit_colour != 0;
+}
+
 // base + (gx * x + gy * y) at the lanes' pixels.
 template <class DF, class VF>
 HWY_INLINE VF plane_at(DF df, VF fx, VF fy, float base, float gx, float gy) {
@@ -555,7 +573,9 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
         }
       }
       if constexpr (kColor == ColorMode::kRGBA8) {
-        const auto packed = pack_unorm8(df, r, g, b, a);
+        // One sample: without the clamp where packs_without_clamp allows.
+        const auto packed = !kMulti && packs_without_clamp(t) ? pack_unorm8<false>(df, r, g, b, a)
+                                                              : pack_unorm8(df, r, g, b, a);
         uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + block * 64 + i;
         if (samples == 1) {
           hn::BlendedStore(packed, any, du, colour);
@@ -1019,23 +1039,6 @@ HWY_INLINE bool window_depth_may_clamp(const TriangleSetup& t) {
   return !(t.z_min - z_margin > 0.0 && t.z_max + z_margin < 1.0);
 }
 
-// Whether raster_window at one sample may pack triangle t's colour into RGBA8 without the clamp
-// to [0, 1]: every channel it forms at a covered pixel centre then lies in [-0.25 / 255,
-// 1 + 0.25 / 255], where the clamp changes no byte (unorm8_low_byte). t.unit_colour says the
-// exact planes lie in [0, 1] at such a centre (inside the triangle, so its barycentric weights,
-// from the unbiased edge functions, are not negative; the setup's double planes are far
-// closer to them than the float error below). The float sums differ from them by at most 9
-// roundings (the plane's three values to float in the setup, raster_window's eight
-// operations), each under 2^-24 of the sum of the terms' magnitudes. With every gradient at
-// most 8 per pixel that sum is at most 1 + 95 * 8 in a small triangle's window box: the value at
-// the box's first pixel is within 40 pixels (along x and y) of a covered centre, and the
-// offsets from it reach at most 15 pixels in x and 40 in y. So the error is at most about 4.1e-4,
-// against 0.25 / 255, 9.8e-4.
-HWY_INLINE bool window_colour_in_unit(const TriangleSetup& t) {
-  static_assert(kUnitColourGradient == 8.0f, "the bound above");
-  return t.unit_colour != 0;
-}
-
 // Whether raster_window's windows for triangle t in this tile span two blocks: the box (inside
 // the tile) does not begin at a block's first column and reaches the next block.
 HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSetup& t) {
@@ -1064,7 +1067,7 @@ HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSet
 // kSimple: one sample or four, q flat (t.flat_q), the depth buffer float and no covered
 // sample's depth needing the clamp (window_depth_may_clamp), so the loop holds no perspective
 // division, depth rounding or clamp, and at four samples its sample loops unroll. At one sample
-// the colour needs no clamp either (window_colour_in_unit), and RGBA8 packs without it. Such
+// the colour needs no clamp either (packs_without_clamp), and RGBA8 packs without it. Such
 // triangles take this copy (`small` about 0.93x the time at four samples; at one, about 0.99x,
 // and about 0.95x more without the colour clamp);
 // other sample counts do not, as two samples with copies of their own made four samples 1.02x
@@ -1368,7 +1371,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
         }
       }
       // One sample, simple: the stored lanes, covered pixel centres, need no clamp
-      // (window_colour_in_unit).
+      // (packs_without_clamp).
       const auto packed = pack_unorm8<!(kSimple && !kMulti)>(df, red, green, blue, alpha);
       uint32_t* const colour = reinterpret_cast<uint32_t*>(tc.rgba8);
       for (uint32_t s = 0; s < samples; ++s) {
@@ -1741,7 +1744,7 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
         const bool two = window_spans_two_blocks(tc, t);
         with_compare<kDepth>(tc, [&](auto compare) {
           const bool simple =
-              (kMulti ? tc.samples == 4 : kColor == ColorMode::kOff || window_colour_in_unit(t)) &&
+              (kMulti ? tc.samples == 4 : kColor == ColorMode::kOff || packs_without_clamp(t)) &&
               t.flat_q && tc.depth_scale == 0.0f && !window_depth_may_clamp(t);
           if (two && simple) {
             raster_window<kDepth, kColor, kMulti, kCount, true, true>(tc, t, counters, compare);

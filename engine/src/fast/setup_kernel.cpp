@@ -154,8 +154,8 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
   put(3, f32(out.z_dy), f32(out.z_min), f32(out.z_max), f32(out.q0));
   put(4, f32(out.q_dx), f32(out.q_dy), f32(out.qa0[0]), f32(out.qa0[1]));
   // The colour gradients as float bits, and the largest magnitude's (as int32, the magnitudes'
-  // bits order as the values: finite floats): unit_colour holds only where it is at most
-  // kUnitColourGradient.
+  // bits order as the values: finite floats), G: unit_colour holds only where G times the box's
+  // reach is at most kUnitColourReach (TriangleSetup::unit_colour).
   hn::Vec<decltype(du)> qa_dx[4], qa_dy[4];
   auto gradient = hn::Zero(di);
   const auto magnitude = [&](hn::Vec<decltype(du)> v) {
@@ -166,9 +166,12 @@ HWY_INLINE void PackLanes(D d, size_t l0, Out& out) {
     qa_dy[c] = f32(out.qa_dy[c]);
     gradient = hn::Max(gradient, hn::Max(magnitude(qa_dx[c]), magnitude(qa_dy[c])));
   }
-  const auto limit = hn::Set(di, std::bit_cast<int32_t>(kUnitColourGradient));
-  const auto unit =
-      hn::IfThenZeroElse(hn::RebindMask(du, hn::Gt(gradient, limit)), flag(out.unit_colour, 0));
+  const auto reach = hn::DemoteTo(
+      df, hn::Add(hn::Add(hn::Sub(load(out.x1), load(out.x0)), hn::Sub(load(out.y1), load(out.y0))),
+                  hn::Set(d, 15.0)));
+  const auto within =
+      hn::Le(hn::Mul(hn::BitCast(df, gradient), reach), hn::Set(df, kUnitColourReach));
+  const auto unit = hn::IfThenElseZero(hn::RebindMask(du, within), flag(out.unit_colour, 0));
   put(5, f32(out.qa0[2]), f32(out.qa0[3]), qa_dx[0], qa_dx[1]);
   put(6, qa_dx[2], qa_dx[3], qa_dy[0], qa_dy[1]);
   put(7, qa_dy[2], qa_dy[3], i32(out.sample_bits), unit);

@@ -178,13 +178,14 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
     t.qa0[c] = static_cast<float>(at0);
   }
   bool unit = ctx.samples == 1 && t.flat_q;
+  float gradient = 0.0f;
   for (int c = 0; c < 4; ++c) {
     for (int k = 0; k < 3; ++k)
       unit = unit && v[k].color[c] >= 0.0 && v[k].color[c] <= 1.0;
-    unit = unit && std::abs(t.qa_dx[c]) <= kUnitColourGradient &&
-           std::abs(t.qa_dy[c]) <= kUnitColourGradient;
+    gradient = std::max({gradient, std::abs(t.qa_dx[c]), std::abs(t.qa_dy[c])});
   }
-  t.unit_colour = unit ? 1 : 0;
+  const float reach = static_cast<float>((t.x1 - t.x0) + (t.y1 - t.y0) + 15);
+  t.unit_colour = unit && gradient * reach <= kUnitColourReach ? 1 : 0;
   out.push_back(t);
 }
 

@@ -60,15 +60,15 @@ struct TriangleSetup {
   // known (any other triangle): the kernel then tests the edges itself.
   uint32_t sample_bits;
   // 1 when q is flat (q = 1), every vertex's four colour channels lie in [0, 1] (so the exact
-  // colour planes lie in [0, 1] over the triangle) and every channel's gradients in x and y are
-  // at most kUnitColourGradient per pixel; 0 otherwise, or when not known (set at one sample
-  // per pixel only). The kernels' small-triangle path then packs RGBA8 without a clamp
-  // (block_kernel-inl.h, window_colour_in_unit).
+  // colour planes lie in [0, 1] over the triangle) and the largest colour gradient G (per pixel,
+  // in x or y) times the box's reach (x1 - x0) + (y1 - y0) + 15 is at most kUnitColourReach; 0
+  // otherwise, or when not known (set at one sample per pixel only). The kernels then pack
+  // RGBA8 at one sample without a clamp (block_kernel-inl.h, packs_without_clamp).
   uint32_t unit_colour;  // (the last 4 bytes: 160 in all, ten 16-byte pieces)
 };
 
-// TriangleSetup::unit_colour's bound on the colour gradients, per pixel.
-inline constexpr float kUnitColourGradient = 8.0f;
+// TriangleSetup::unit_colour's bound on a triangle's colour gradients times its box's reach.
+inline constexpr float kUnitColourReach = 512.0f;
 
 // Setups of one worker's range of a draw (large: see aligned_allocator.hpp). The vectorized
 // setup appends uninitialized records and fills them with streaming stores.
