@@ -1068,10 +1068,9 @@ HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSet
 // sample's depth needing the clamp (window_depth_may_clamp), so the loop holds no perspective
 // division, depth rounding or clamp, and at four samples its sample loops unroll. At one sample
 // the colour needs no clamp either (packs_without_clamp), and RGBA8 packs without it. Such
-// triangles take this copy (`small` about 0.93x the time at four samples; at one, about 0.99x,
-// and about 0.95x more without the colour clamp);
-// other sample counts do not, as two samples with copies of their own made four samples 1.02x
-// to 1.03x slower.
+// triangles take this copy: `small` about 0.93x the time at four samples; at one about 0.99x,
+// then 0.95x of that without the colour clamp (benchmarks/RESULTS.md). Other sample counts do
+// not, as two samples with copies of their own made four samples 1.02x to 1.03x slower.
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kTwo, bool kSimple,
           class Compare>
 HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Counters& counters,
