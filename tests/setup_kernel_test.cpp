@@ -162,9 +162,6 @@ size_t first_difference(const List& a, const List& b) {
   return a.size();
 }
 
-// Sets `draw` up with every compiled target this machine runs, at 1, 2 and 4 samples, with and
-// without records, and expects the same bytes from each as from the first. With
-// `expect_clipped`, the draw must have triangles the scalar clipper takes.
 // The compiled targets this machine runs, HWY_SCALAR among them.
 std::vector<int64_t> runnable_targets() {
   std::vector<int64_t> targets;
@@ -175,6 +172,9 @@ std::vector<int64_t> runnable_targets() {
   return targets;
 }
 
+// Sets `draw` up with every compiled target this machine runs, at 1, 2 and 4 samples, with and
+// without records, and expects the same bytes from each as from the first. With
+// `expect_clipped`, the draw must have triangles the scalar clipper takes.
 void expect_same_bytes_on_every_target(const Draw& draw, bool expect_clipped) {
   const std::vector<int64_t> targets = runnable_targets();
   ASSERT_NE(std::find(targets.begin(), targets.end(), int64_t{HWY_SCALAR}), targets.end())
