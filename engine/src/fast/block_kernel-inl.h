@@ -76,6 +76,38 @@ HWY_INLINE auto all_lanes(D d) {
   return hn::FirstN(d, hn::Lanes(d));
 }
 
+// Masked stores of whole vectors. On x86 without AVX-512 a masked store (AVX2's vmaskmovps and
+// vpmaskmovd) is microcoded on AMD's Zen 1 to 3, about a dozen cycles each: there, a load, a
+// blend and a store of the whole vector instead (on a Zen 3 host `small` took about 0.75x the
+// time at one sample and 0.5x at four, benchmarks/RESULTS.md). Every vector the kernels store this
+// way lies in one block row of the tile being drawn, which only the task drawing that tile touches,
+// so the lanes written back unchanged race with nothing.
+#if HWY_ARCH_X86 && HWY_TARGET > HWY_AVX3
+inline constexpr bool kStoreByBlend = true;
+#else
+inline constexpr bool kStoreByBlend = false;
+#endif
+
+// Stores v's lanes where m is set to p (aligned, a whole vector).
+template <class D, class M, class T>
+HWY_INLINE void store_masked(hn::Vec<D> v, M m, D d, T* HWY_RESTRICT p) {
+  if constexpr (kStoreByBlend) {
+    hn::Store(hn::IfThenElse(m, v, hn::Load(d, p)), d, p);
+  } else {
+    hn::BlendedStore(v, m, d, p);
+  }
+}
+
+// The same, where `old` holds p's whole vector as loaded before.
+template <class D, class M, class T>
+HWY_INLINE void store_masked(hn::Vec<D> v, M m, D d, T* HWY_RESTRICT p, hn::Vec<D> old) {
+  if constexpr (kStoreByBlend) {
+    hn::Store(hn::IfThenElse(m, v, old), d, p);
+  } else {
+    hn::BlendedStore(v, m, d, p);
+  }
+}
+
 template <class D, class V>
 HWY_INLINE auto depth_passes(D d, CompareOp op, V incoming, V stored) {
   switch (op) {
@@ -505,10 +537,10 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
             // about 0.96x, large 0.94x to 1.00x, medium the same, benchmarks/RESULTS.md). The
             // general path's multisample blocks keep the branch (without it medium took 1.03x
             // the time at 4 samples).
-            hn::BlendedStore(z, pass, df, plane);
+            store_masked(z, pass, df, plane);
             wrote |= !hn::AllFalse(df, pass);
           } else if (!hn::AllFalse(df, pass)) {
-            hn::BlendedStore(z, pass, df, plane);
+            store_masked(z, pass, df, plane);
             wrote = true;
           }
         }
@@ -578,10 +610,10 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
                                                               : pack_unorm8(df, r, g, b, a);
         uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + block * 64 + i;
         if (samples == 1) {
-          hn::BlendedStore(packed, any, du, colour);
+          store_masked(packed, any, du, colour);
         } else {
           for (uint32_t s = 0; s < samples; ++s) {
-            hn::BlendedStore(packed, passed(s), du, colour + s * kSamplePlane);
+            store_masked(packed, passed(s), du, colour + s * kSamplePlane);
           }
         }
       } else {
@@ -1248,8 +1280,12 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
         float* const plane = tc.depth + s * kSamplePlane;
         pass = hn::And(pass, compare(df, z, stored));
         if constexpr (kDepth == DepthMode::kTestWrite) {
-          hn::BlendedStore(z, two ? hn::And(pass, in_a_f) : pass, df, plane + at_a);
-          if (two) hn::BlendedStore(z, hn::And(pass, in_b_f), df, plane + at_b);
+          if constexpr (two) {
+            store_masked(z, hn::And(pass, in_a_f), df, plane + at_a);
+            store_masked(z, hn::And(pass, in_b_f), df, plane + at_b);
+          } else {
+            store_masked(z, pass, df, plane + at_a, stored);  // stored: the whole line
+          }
         }
         if constexpr (kCount) st.passed += static_cast<uint32_t>(hn::CountTrue(df, pass));
         if constexpr (kMulti) {
@@ -1376,11 +1412,8 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       for (uint32_t s = 0; s < samples; ++s) {
         const auto m = kMulti ? passed(s) : any;
         uint32_t* const target = colour + s * kSamplePlane;
-        hn::BlendedStore(packed, hn::RebindMask(du, two ? hn::And(m, in_a_f) : m), du,
-                         target + at_a);
-        if (two) {
-          hn::BlendedStore(packed, hn::RebindMask(du, hn::And(m, in_b_f)), du, target + at_b);
-        }
+        store_masked(packed, hn::RebindMask(du, two ? hn::And(m, in_a_f) : m), du, target + at_a);
+        if (two) store_masked(packed, hn::RebindMask(du, hn::And(m, in_b_f)), du, target + at_b);
       }
     }
   }
