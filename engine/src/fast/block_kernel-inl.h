@@ -88,17 +88,8 @@ inline constexpr bool kStoreByBlend = true;
 inline constexpr bool kStoreByBlend = false;
 #endif
 
-// Stores v's lanes where m is set to p (aligned, a whole vector).
-template <class D, class M, class T>
-HWY_INLINE void store_masked(hn::Vec<D> v, M m, D d, T* HWY_RESTRICT p) {
-  if constexpr (kStoreByBlend) {
-    hn::Store(hn::IfThenElse(m, v, hn::Load(d, p)), d, p);
-  } else {
-    hn::BlendedStore(v, m, d, p);
-  }
-}
-
-// The same, where `old` holds p's whole vector as loaded before.
+// Stores v's lanes where m is set to p (aligned, a whole vector), whose whole vector `old`
+// holds as loaded before (read only with kStoreByBlend).
 template <class D, class M, class T>
 HWY_INLINE void store_masked(hn::Vec<D> v, M m, D d, T* HWY_RESTRICT p, hn::Vec<D> old) {
   if constexpr (kStoreByBlend) {
@@ -106,6 +97,12 @@ HWY_INLINE void store_masked(hn::Vec<D> v, M m, D d, T* HWY_RESTRICT p, hn::Vec<
   } else {
     hn::BlendedStore(v, m, d, p);
   }
+}
+
+// The same, loading p's vector itself where it needs it.
+template <class D, class M, class T>
+HWY_INLINE void store_masked(hn::Vec<D> v, M m, D d, T* HWY_RESTRICT p) {
+  store_masked(v, m, d, p, kStoreByBlend ? hn::Load(d, p) : v);
 }
 
 template <class D, class V>
