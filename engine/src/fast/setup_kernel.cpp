@@ -368,19 +368,55 @@ HWY_INLINE hn::Vec<DI> table_entries(D d, DI di, const std::array<uint32_t, kEnt
                          hn::DemoteTo(di, mask));
 }
 
+// The context's values that the lanes compare with or scale by, as doubles: formed once for a
+// range of triangles, not again for each vector (a conversion, a shift or a division each).
+// The same expressions as before, so the same bits.
+struct LaneConstants {
+  explicit LaneConstants(const SetupContext& ctx) {
+    const int bits = static_cast<int>(ctx.subpixel_bits), shift = bits - 4;
+    const auto reach = [&](int32_t offset) {  // a sample offset (1/16 px) from the pixel corner
+      return static_cast<double>(int64_t{8 + offset} << shift);
+    };
+    scale = static_cast<double>(1u << bits);
+    inv_scale = 1.0 / scale;
+    half_width = 0.5 * ctx.width;
+    half_height = 0.5 * ctx.height;
+    width_limit = ctx.width * scale;
+    height_limit = ctx.height * scale;
+    last_x = ctx.width - 1.0;
+    last_y = ctx.height - 1.0;
+    reach_x_hi = reach(ctx.sample_dx_hi);
+    reach_y_hi = reach(ctx.sample_dy_hi);
+    reach_x_lo = reach(ctx.sample_dx_lo);
+    reach_y_lo = reach(ctx.sample_dy_lo);
+    centre_unit = static_cast<double>(1u << shift);
+    narrow_limit = static_cast<double>(narrow_edge_limit(ctx.subpixel_bits));
+    small_limit = 32.0 * scale;
+  }
+  double scale, inv_scale;           // 2^bits and its inverse
+  double half_width, half_height;    // the viewport transform's factors
+  double width_limit, height_limit;  // the screen's size in subpixels
+  double last_x, last_y;             // the last pixel column and row
+  double reach_x_hi, reach_y_hi;     // the samples' extremes from the pixel corner,
+  double reach_x_lo, reach_y_lo;     // in subpixels
+  double centre_unit;                // 1/16 px in subpixels
+  double narrow_limit, small_limit;  // TriangleSetup::narrow's and small's bounds
+};
+
 // One vector of lanes from l0, whose vertices' positions `pos` holds as x, y, z, w vectors.
 // kUnitW: every vertex has w = 1 (orthographic and 2D draws), so the divisions by w are
 // skipped: x / 1 is x exactly, and the results are the same bits.
 template <bool kUnitW, class VF>
-HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
-                               const VF (&color)[3][4], size_t l0, Out& out) {
+HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const LaneConstants& lc,
+                               const VF (&pos)[3][4], const VF (&color)[3][4], size_t l0,
+                               Out& out) {
   const hn::ScalableTag<double> d;
   using V = hn::Vec<decltype(d)>;
   const PipelineState& p = *ctx.pipeline;
   const bool gl_depth = p.clip_depth == ClipDepth::kNegativeOneToOne;
   const int bits = static_cast<int>(ctx.subpixel_bits);
   const int shift = bits - 4;
-  const double scale = static_cast<double>(1u << bits);
+  const double scale = lc.scale;
   const auto zero = hn::Zero(d);
   V X[3], Y[3], Z[3], IW[3];
   V nearest = zero;  // the least clip distance over the vertices
@@ -401,8 +437,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     // window x = (x / w + 1) * width / 2, window y = (1 - y / w) * height / 2, snapped.
     IW[k] = kUnitW ? hn::Set(d, 1.0) : hn::Div(hn::Set(d, 1.0), w);
     const V x_w = kUnitW ? x : quotient(x, w, IW[k]), y_w = kUnitW ? y : quotient(y, w, IW[k]);
-    const V wx = hn::Mul(hn::Add(x_w, hn::Set(d, 1.0)), hn::Set(d, 0.5 * ctx.width));
-    const V wy = hn::Mul(hn::Sub(hn::Set(d, 1.0), y_w), hn::Set(d, 0.5 * ctx.height));
+    const V wx = hn::Mul(hn::Add(x_w, hn::Set(d, 1.0)), hn::Set(d, lc.half_width));
+    const V wy = hn::Mul(hn::Sub(hn::Set(d, 1.0), y_w), hn::Set(d, lc.half_height));
     X[k] = round_to_int(d, hn::Mul(wx, hn::Set(d, scale)));
     Y[k] = round_to_int(d, hn::Mul(wy, hn::Set(d, scale)));
     Z[k] = kUnitW ? z : quotient(z, w, IW[k]);
@@ -445,18 +481,17 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
   const V lo_x = hn::Min(hn::Min(X[0], X[1]), X[2]), hi_x = hn::Max(hn::Max(X[0], X[1]), X[2]);
   const V lo_y = hn::Min(hn::Min(Y[0], Y[1]), Y[2]), hi_y = hn::Max(hn::Max(Y[0], Y[1]), Y[2]);
   keep = hn::And(keep, hn::And(hn::And(hn::Ge(hi_x, zero), hn::Ge(hi_y, zero)),
-                               hn::And(hn::Lt(lo_x, hn::Set(d, ctx.width * scale)),
-                                       hn::Lt(lo_y, hn::Set(d, ctx.height * scale)))));
-  const V inv_scale = hn::Set(d, 1.0 / scale);
-  const auto reach = [&](int32_t offset) {  // a sample offset (1/16 px) from the pixel corner
-    return hn::Set(d, static_cast<double>(int64_t{8 + offset} << shift));
-  };
-  const V bx0 = hn::Max(hn::Ceil(hn::Mul(hn::Sub(lo_x, reach(ctx.sample_dx_hi)), inv_scale)), zero);
-  const V by0 = hn::Max(hn::Ceil(hn::Mul(hn::Sub(lo_y, reach(ctx.sample_dy_hi)), inv_scale)), zero);
-  const V bx1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_x, reach(ctx.sample_dx_lo)), inv_scale)),
-                        hn::Set(d, ctx.width - 1.0));
-  const V by1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_y, reach(ctx.sample_dy_lo)), inv_scale)),
-                        hn::Set(d, ctx.height - 1.0));
+                               hn::And(hn::Lt(lo_x, hn::Set(d, lc.width_limit)),
+                                       hn::Lt(lo_y, hn::Set(d, lc.height_limit)))));
+  const V inv_scale = hn::Set(d, lc.inv_scale);
+  const V bx0 =
+      hn::Max(hn::Ceil(hn::Mul(hn::Sub(lo_x, hn::Set(d, lc.reach_x_hi)), inv_scale)), zero);
+  const V by0 =
+      hn::Max(hn::Ceil(hn::Mul(hn::Sub(lo_y, hn::Set(d, lc.reach_y_hi)), inv_scale)), zero);
+  const V bx1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_x, hn::Set(d, lc.reach_x_lo)), inv_scale)),
+                        hn::Set(d, lc.last_x));
+  const V by1 = hn::Min(hn::Floor(hn::Mul(hn::Sub(hi_y, hn::Set(d, lc.reach_y_lo)), inv_scale)),
+                        hn::Set(d, lc.last_y));
   auto any_sample = hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1));
   out.clipped |= mask_bits(d, hn::Not(inside)) << l0;
   out.kept |= mask_bits(d, keep) << l0;
@@ -478,10 +513,10 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
   }
 
   // Edges and barycentric planes (see triangle_setup.cpp).
-  const V cx = hn::Mul(hn::Add(hn::Mul(bx0, hn::Set(d, 16.0)), hn::Set(d, 8.0)),
-                       hn::Set(d, static_cast<double>(1u << shift)));
-  const V cy = hn::Mul(hn::Add(hn::Mul(by0, hn::Set(d, 16.0)), hn::Set(d, 8.0)),
-                       hn::Set(d, static_cast<double>(1u << shift)));
+  const V cx =
+      hn::Mul(hn::Add(hn::Mul(bx0, hn::Set(d, 16.0)), hn::Set(d, 8.0)), hn::Set(d, lc.centre_unit));
+  const V cy =
+      hn::Mul(hn::Add(hn::Mul(by0, hn::Set(d, 16.0)), hn::Set(d, 8.0)), hn::Set(d, lc.centre_unit));
   const V inv_area = hn::Div(hn::Set(d, 1.0), area);
   const V per_pixel = hn::Mul(hn::Set(d, scale), inv_area);
   V weight0[3], wdx[3], wdy[3];
@@ -531,11 +566,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
     wdx[k] = hn::Mul(hn::Neg(dy), per_pixel);
     wdy[k] = hn::Mul(dx, per_pixel);
   }
-  hn::Store(as_double_mask(
-                d, hn::Lt(max_step,
-                          hn::Set(d, static_cast<double>(narrow_edge_limit(ctx.subpixel_bits))))),
-            d, out.narrow + l0);
-  const auto small = hn::Lt(max_delta, hn::Set(d, 32.0 * scale));  // TriangleSetup::small
+  hn::Store(as_double_mask(d, hn::Lt(max_step, hn::Set(d, lc.narrow_limit))), d, out.narrow + l0);
+  const auto small = hn::Lt(max_delta, hn::Set(d, lc.small_limit));  // TriangleSetup::small
   hn::Store(as_double_mask(d, small), d, out.small + l0);
   V centres = zero;  // TriangleSetup::centres
   if (centre_only) {
@@ -860,8 +892,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const VF (&pos)[3][4],
 // One vector of lanes from l0, from its vertices' positions and colours as x, y, z, w and
 // r, g, b, a vectors.
 template <class VF>
-HWY_INLINE void SetupVertices(const SetupContext& ctx, const VF (&pos)[3][4],
-                              const VF (&color)[3][4], size_t l0, Out& out) {
+HWY_INLINE void SetupVertices(const SetupContext& ctx, const LaneConstants& lc,
+                              const VF (&pos)[3][4], const VF (&color)[3][4], size_t l0, Out& out) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<float, decltype(d)> df;
   const auto one = hn::Set(df, 1.0f);
@@ -869,13 +901,14 @@ HWY_INLINE void SetupVertices(const SetupContext& ctx, const VF (&pos)[3][4],
   for (int k = 0; k < 3; ++k)
     unit_w = hn::And(unit_w, hn::Eq(pos[k][3], one));
   if (hn::AllTrue(df, unit_w)) {
-    SetupLaneGroup<true>(ctx, pos, color, l0, out);
+    SetupLaneGroup<true>(ctx, lc, pos, color, l0, out);
   } else {
-    SetupLaneGroup<false>(ctx, pos, color, l0, out);
+    SetupLaneGroup<false>(ctx, lc, pos, color, l0, out);
   }
 }
 
-void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used, Out& out) {
+void SetupBatchLanes(const SetupContext& ctx, const LaneConstants& lc, const Batch& in,
+                     size_t lanes_used, Out& out) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<float, decltype(d)> df;
   for (size_t l0 = 0; l0 < lanes_used; l0 += hn::Lanes(d)) {
@@ -885,7 +918,7 @@ void SetupBatchLanes(const SetupContext& ctx, const Batch& in, size_t lanes_used
       hn::LoadInterleaved4(df, &in.color[k][l0][0], color[k][0], color[k][1], color[k][2],
                            color[k][3]);
     }
-    SetupVertices(ctx, pos, color, l0, out);
+    SetupVertices(ctx, lc, pos, color, l0, out);
   }
 }
 
@@ -985,14 +1018,14 @@ HWY_INLINE void LoadTriangleValues(DF df, const float* HWY_RESTRICT from,
 
 // SetupBatchLanes for Lanes(d) triangles of a list without indices, whose vertices have four
 // colour values each: read from the draw's arrays directly, with no Batch copy.
-void SetupListLanes(const SetupContext& ctx, const float* positions, const float* colors,
-                    Out& out) {
+void SetupListLanes(const SetupContext& ctx, const LaneConstants& lc, const float* positions,
+                    const float* colors, Out& out) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<float, decltype(d)> df;
   hn::Vec<decltype(df)> pos[3][4], color[3][4];
   LoadTriangleValues(df, positions, pos);
   LoadTriangleValues(df, colors, color);
-  SetupVertices(ctx, pos, color, 0, out);
+  SetupVertices(ctx, lc, pos, color, 0, out);
 }
 
 }  // namespace
@@ -1071,6 +1104,7 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
   const uint32_t count = input.attribute_count;
   Batch batch;
   Out out;
+  const LaneConstants lc(ctx);
   bool ok = true;
   // A list without indices and with the four colour values per vertex (captures, most meshes
   // drawn as lists) is read in place a full vector of triangles at a time.
@@ -1092,14 +1126,14 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         ok = false;
         break;
       }
-      SetupListLanes(ctx, positions, colors, out);
+      SetupListLanes(ctx, lc, positions, colors, out);
     } else {
       fill_batch(input, t, used, lanes, batch);
       if (ctx.check_finite && !batch_finite(batch, lanes)) {
         ok = false;
         break;
       }
-      SetupBatchLanes(ctx, batch, lanes, out);
+      SetupBatchLanes(ctx, lc, batch, lanes, out);
     }
 
     // The lanes' outcomes counted at once; then only the lanes with records are visited, in
