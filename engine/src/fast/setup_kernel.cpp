@@ -369,8 +369,8 @@ HWY_INLINE hn::Vec<DI> table_entries(D d, DI di, const std::array<uint32_t, kEnt
 }
 
 // The context's values that the lanes compare with or scale by, as doubles: formed once for a
-// range of triangles, not again for each vector (a conversion, a shift or a division each).
-// The same expressions as before, so the same bits.
+// range of triangles rather than for each vector (each takes a conversion, a shift or a
+// division), so that a vector broadcasts them from memory.
 struct LaneConstants {
   explicit LaneConstants(const SetupContext& ctx) {
     const int bits = static_cast<int>(ctx.subpixel_bits), shift = bits - 4;
@@ -705,8 +705,8 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const LaneConstants& lc,
     // With no lane's box fitting, every mask stays 0: the tests are skipped (`small`, most of
     // whose boxes are wider: 0.96x to 0.98x the time at one sample).
     if (row_pairs && !hn::AllFalse(d, fits)) {
-      // row advances two rows a pass, in place: GCC made a copy of it (an array in memory) in
-      // 16-byte pieces, which the 32-byte loads after it waited for.
+      // row advances two rows a pass, in place: GCC makes a copy of it (an array in memory) in
+      // 16-byte pieces, which the 32-byte loads after it must wait for.
       VS step_rows[3];
       for (int k = 0; k < 3; ++k)
         step_rows[k] = hn::Add(step_y[k], step_y[k]);
