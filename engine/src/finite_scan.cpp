@@ -1,5 +1,5 @@
-// See finite_scan.hpp. Every vector of values takes Highway's IsFinite (one instruction with
-// AVX-512), and the lanes' results are combined at the end, so the loop has no branch on them.
+// See finite_scan.hpp. The whole vectors of values take vectors_finite (finite_scan-inl.h),
+// whose loop has no branch on the values; the few left over are tested one by one.
 #include "engine/src/finite_scan.hpp"
 
 #include <cmath>
@@ -9,19 +9,17 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "engine/src/finite_scan-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace tessera::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 bool ValuesFinite(const float* values, size_t n) {
   const hn::ScalableTag<float> df;
-  const size_t lanes = hn::Lanes(df);
-  auto finite = hn::FirstN(df, lanes);
-  size_t i = 0;
-  for (; i + lanes <= n; i += lanes)
-    finite = hn::And(finite, hn::IsFinite(hn::LoadU(df, values + i)));
-  bool all = hn::AllTrue(df, finite);
-  for (; i < n; ++i)
+  const size_t whole = n - n % hn::Lanes(df);
+  bool all = vectors_finite(df, values, whole);
+  for (size_t i = whole; i < n; ++i)
     all = all && std::isfinite(values[i]);
   return all;
 }

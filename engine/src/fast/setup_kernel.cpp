@@ -26,6 +26,7 @@
 
 #include "engine/src/fast/block_kernel.hpp"
 #include "engine/src/fast/unorm8-inl.h"
+#include "engine/src/finite_scan-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace tessera::fast::HWY_NAMESPACE {
@@ -1031,16 +1032,8 @@ void SetupListLanes(const SetupContext& ctx, const LaneConstants& lc, const floa
 }  // namespace
 
 // Whether `count` floats from `from` are all finite (count: a multiple of the float lanes).
-// A float is not finite when its exponent bits are all set: the largest exponent field over the
-// range says, two operations a vector (IsFinite takes four).
 HWY_INLINE bool range_finite(const float* from, size_t count) {
-  const hn::ScalableTag<float> df;
-  const hn::RebindToUnsigned<decltype(df)> du;
-  const auto exponent = hn::Set(du, 0x7F800000u);
-  auto largest = hn::Zero(du);
-  for (size_t i = 0; i < count; i += hn::Lanes(df))
-    largest = hn::Max(largest, hn::And(hn::BitCast(du, hn::LoadU(df, from + i)), exponent));
-  return hn::AllTrue(du, hn::Lt(largest, exponent));
+  return tessera::HWY_NAMESPACE::vectors_finite(hn::ScalableTag<float>(), from, count);
 }
 
 // Whether the batch's first `lanes` lanes of positions and colours are all finite. Each
