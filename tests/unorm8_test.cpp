@@ -1,7 +1,7 @@
 // The kernels' float-to-unorm8 packing in SIMD lanes (engine/src/fast/unorm8-inl.h), on every
 // SIMD target this machine runs: each lane's packed RGBA8 is the scalar pack_rgba8 of its four
-// channels, for values around every step between bytes, out of [0, 1], infinite, NaN, denormal
-// and -0.
+// channels, for values around every step between bytes, out of [0, 1] (up to and past the
+// largest whose scaled sum converts to int32), infinite, NaN, denormal and -0.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -75,6 +75,12 @@ std::vector<float> test_values() {
   }
   for (int i = 0; i <= 4096; ++i)
     values.push_back(-0.5f + static_cast<float>(i) / 2048.0f);
+  // Past 1 and below 0 by far: past int16 once scaled (128.5), past int32 (8421505).
+  for (const float far :
+       {2.0f, 128.0f, 128.5f, 129.0f, 257.0f, 8388608.0f, 8421504.0f, 8421505.0f, 1e10f}) {
+    values.push_back(far);
+    values.push_back(-far);
+  }
   for (const float special :
        {0.0f, -0.0f, 1.0f, std::numeric_limits<float>::denorm_min(),
         -std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::min(),

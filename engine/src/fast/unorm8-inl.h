@@ -38,6 +38,36 @@ HWY_INLINE __m512i truncate_to_int(__m512 v) {
 inline constexpr bool kTruncateInOne = false;
 #endif
 
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_SSSE3 && HWY_TARGET != HWY_SCALAR && HWY_TARGET != HWY_EMU128
+// x86 from SSSE3 packs four channels' int32 lanes into RGBA8 with saturating packs: int32 to
+// int16 (signed), int16 to uint8 (unsigned), so any negative value becomes 0 and any value
+// from 255 to 2^31 - 1 becomes 255; within each 128-bit block the bytes then lie channel by
+// channel (r0-r3, g0-g3, b0-b3, a0-a3), and one byte shuffle puts them pixel by pixel.
+inline constexpr bool kPackBySaturation = true;
+HWY_INLINE __m128i pack_saturated(__m128i r, __m128i g, __m128i b, __m128i a) {
+  const __m128i order = _mm_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+  return _mm_shuffle_epi8(_mm_packus_epi16(_mm_packs_epi32(r, g), _mm_packs_epi32(b, a)), order);
+}
+#if HWY_TARGET <= HWY_AVX2
+HWY_INLINE __m256i pack_saturated(__m256i r, __m256i g, __m256i b, __m256i a) {
+  const __m256i order = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4,
+                                         8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+  return _mm256_shuffle_epi8(
+      _mm256_packus_epi16(_mm256_packs_epi32(r, g), _mm256_packs_epi32(b, a)), order);
+}
+#endif
+#if HWY_TARGET <= HWY_AVX3
+HWY_INLINE __m512i pack_saturated(__m512i r, __m512i g, __m512i b, __m512i a) {
+  const __m512i order =
+      _mm512_broadcast_i32x4(_mm_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15));
+  return _mm512_shuffle_epi8(
+      _mm512_packus_epi16(_mm512_packs_epi32(r, g), _mm512_packs_epi32(b, a)), order);
+}
+#endif
+#else
+inline constexpr bool kPackBySaturation = false;
+#endif
+
 // to_unorm8 (sample_positions.hpp) in each lane's low byte: k = truncate(clamp(c, 0, 1) * 255 +
 // 0.5) (multiply, then add: never fused, the build forbids contraction), NaN 0. On x86, k is
 // the truncating conversion of that sum, and the bits above the low byte are 0. Elsewhere k is
@@ -68,17 +98,31 @@ HWY_INLINE auto unorm8_low_byte(DF df, VF c) {
   }
 }
 
-// Four channels' lanes as packed RGBA8 (pack_rgba8's bytes): g, b and a shifted left by 8 or
-// more, which drops any bits above their low bytes, and r's masked off where it has such bits.
-// kClamp as unorm8_low_byte's.
+// Four channels' lanes as packed RGBA8 (pack_rgba8's bytes). x86 from SSSE3: the sums
+// converted and packed with saturation (pack_saturated). Elsewhere: g, b and a shifted left by
+// 8 or more, which drops any bits above their low bytes, and r's masked off where it has such
+// bits. kClamp as unorm8_low_byte's.
 template <bool kClamp = true, class DF, class VF>
 HWY_INLINE auto pack_unorm8(DF df, VF r, VF g, VF b, VF a) {
   const hn::RebindToUnsigned<DF> du;
-  auto red = unorm8_low_byte<kClamp>(df, r);
-  if constexpr (!kTruncateInOne) red = hn::And(red, hn::Set(du, 0xFFu));
-  return hn::Or(hn::Or(red, hn::ShiftLeft<8>(unorm8_low_byte<kClamp>(df, g))),
-                hn::Or(hn::ShiftLeft<16>(unorm8_low_byte<kClamp>(df, b)),
-                       hn::ShiftLeft<24>(unorm8_low_byte<kClamp>(df, a))));
+  if constexpr (kPackBySaturation) {
+    // The packs clamp below 0 (NaN converts to -2^31, so it becomes 0 as well) and from 255 up
+    // to 2^31 - 1: the clamp left is the one at 255.5, for sums that would not convert (2^31
+    // and more, or infinite). x86's min returns its second operand when either is NaN, so NaN
+    // passes it. For c in [0, 1] the sum is to_unorm8's; above, the byte is 255, below, 0.
+    const auto to_int = [&](VF c) {
+      auto scaled = hn::Add(hn::Mul(c, hn::Set(df, 255.0f)), hn::Set(df, 0.5f));
+      if constexpr (kClamp) scaled = hn::Min(hn::Set(df, 255.5f), scaled);
+      return truncate_to_int(scaled.raw);
+    };
+    return hn::Vec<decltype(du)>{pack_saturated(to_int(r), to_int(g), to_int(b), to_int(a))};
+  } else {
+    auto red = unorm8_low_byte<kClamp>(df, r);
+    if constexpr (!kTruncateInOne) red = hn::And(red, hn::Set(du, 0xFFu));
+    return hn::Or(hn::Or(red, hn::ShiftLeft<8>(unorm8_low_byte<kClamp>(df, g))),
+                  hn::Or(hn::ShiftLeft<16>(unorm8_low_byte<kClamp>(df, b)),
+                         hn::ShiftLeft<24>(unorm8_low_byte<kClamp>(df, a))));
+  }
 }
 
 }  // namespace tessera::fast::HWY_NAMESPACE
