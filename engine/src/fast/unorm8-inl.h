@@ -44,24 +44,26 @@ inline constexpr bool kTruncateInOne = false;
 // from 255 to 2^31 - 1 becomes 255; within each 128-bit block the bytes then lie channel by
 // channel (r0-r3, g0-g3, b0-b3, a0-a3), and one byte shuffle puts them pixel by pixel.
 inline constexpr bool kPackBySaturation = true;
+// The byte order that puts each 128-bit block's channel-by-channel bytes pixel by pixel.
+HWY_INLINE __m128i channel_to_pixel_order() {
+  return _mm_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+}
 HWY_INLINE __m128i pack_saturated(__m128i r, __m128i g, __m128i b, __m128i a) {
-  const __m128i order = _mm_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
-  return _mm_shuffle_epi8(_mm_packus_epi16(_mm_packs_epi32(r, g), _mm_packs_epi32(b, a)), order);
+  return _mm_shuffle_epi8(_mm_packus_epi16(_mm_packs_epi32(r, g), _mm_packs_epi32(b, a)),
+                          channel_to_pixel_order());
 }
 #if HWY_TARGET <= HWY_AVX2
 HWY_INLINE __m256i pack_saturated(__m256i r, __m256i g, __m256i b, __m256i a) {
-  const __m256i order = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4,
-                                         8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
   return _mm256_shuffle_epi8(
-      _mm256_packus_epi16(_mm256_packs_epi32(r, g), _mm256_packs_epi32(b, a)), order);
+      _mm256_packus_epi16(_mm256_packs_epi32(r, g), _mm256_packs_epi32(b, a)),
+      _mm256_broadcastsi128_si256(channel_to_pixel_order()));
 }
 #endif
 #if HWY_TARGET <= HWY_AVX3
 HWY_INLINE __m512i pack_saturated(__m512i r, __m512i g, __m512i b, __m512i a) {
-  const __m512i order =
-      _mm512_broadcast_i32x4(_mm_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15));
   return _mm512_shuffle_epi8(
-      _mm512_packus_epi16(_mm512_packs_epi32(r, g), _mm512_packs_epi32(b, a)), order);
+      _mm512_packus_epi16(_mm512_packs_epi32(r, g), _mm512_packs_epi32(b, a)),
+      _mm512_broadcast_i32x4(channel_to_pixel_order()));
 }
 #endif
 #else
