@@ -1178,6 +1178,24 @@ TEST(FastEngine, RasterCountersOffDrawTheSameImageAndCountNoRasterWork) {
     EXPECT_EQ(c.triangles_rasterized, counted.counters.triangles_rasterized);
     EXPECT_EQ(c.bin_references, counted.counters.bin_references);
   });
+  // Triangles of ~80 px sides over one another, through the general path, whose kernels
+  // without counters drop a triangle that Hi-Z finds hidden at every block of its box in a
+  // tile before the blocks' own tests: the same image and depth, in every depth format.
+  Scene large = soup(712, 600, 3000.0f, false, true);
+  for (const uint32_t samples : {1u, 4u}) {
+    for (const DepthFormat format : {DepthFormat::kFloat32, DepthFormat::kUnorm16}) {
+      large.samples = samples;
+      large.depth_format = format;
+      for_each_config([&](const Config& config) {
+        const Result counted = render(large, Backend::kFast, config);
+        const Result quiet = render(large, Backend::kFast, config, kDefaultBinMemoryBudget, false);
+        EXPECT_GT(counted.counters.hiz_rejected, 1000u);
+        EXPECT_EQ(quiet.rgba8, counted.rgba8);
+        EXPECT_EQ(0,
+                  std::memcmp(quiet.depth.data(), counted.depth.data(), counted.depth.size() * 4));
+      });
+    }
+  }
 }
 
 TEST(FastEngine, SubBlocksSkipLaneGroupsOutsideAnEdgeAndTestOnlyTheEdgesCrossingThem) {
@@ -1327,6 +1345,11 @@ TEST(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
       EXPECT_GT(fast.counters.hiz_rejected, 10000u);
       EXPECT_EQ(fast.rgba8, ref.rgba8);
       EXPECT_EQ(0, std::memcmp(fast.depth.data(), ref.depth.data(), ref.depth.size() * 4));
+      // The kernels without counters, which drop a triangle hidden at every block of its box
+      // in a tile before the blocks' tests: the same image.
+      const Result quiet = render(s, Backend::kFast, config, kDefaultBinMemoryBudget, false);
+      EXPECT_EQ(quiet.rgba8, ref.rgba8);
+      EXPECT_EQ(0, std::memcmp(quiet.depth.data(), ref.depth.data(), ref.depth.size() * 4));
       // Hi-Z switched off: the same image from per-sample tests alone.
       const Result plain = render(s, Backend::kFast, config, kDefaultBinMemoryBudget, true, false);
       EXPECT_EQ(plain.counters.hiz_rejected + plain.counters.hiz_accepted, 0u);
