@@ -46,7 +46,9 @@ struct RendererOptions {
   // Count the fast engine's raster work: blocks rejected, accepted and partial, Hi-Z
   // decisions, samples covered and passed, pixels shaded. Off, those counters stay 0 and the
   // raster kernels contain no counting code (a separate kernel instance); the triangle and
-  // bin counts are kept either way (a few additions per triangle).
+  // bin counts are kept either way (a few additions per triangle). The kernels without
+  // counters also drop a large triangle that Hi-Z finds hidden at every block of its box in a
+  // tile before any block test (the same image).
   bool raster_counters = true;
   // Hi-Z: per 8x8 block depth bounds that reject a triangle's blocks hidden behind what is
   // drawn and let fully covered blocks in front skip the depth reads. Off, every block is
