@@ -894,17 +894,21 @@ HWY_INLINE hn::Vec<DI> lane_steps(DI di, int32_t step_x, int32_t step_y) {
   return lane_steps(di, hn::Load(di, kPixels.x), step_x, step_y);
 }
 
-// Whether Hi-Z rejects the triangle's depth range (bt.z_floor to bt.z_ceil) at every block from
-// (bx0, by0) to (bx1, by1) of the tile (bounds out of date recomputed first).
-HWY_INLINE bool hidden_in_tile(const TileContext& tc, const TriangleState& st, const BlockTests& bt,
-                               int32_t bx0, int32_t by0, int32_t bx1, int32_t by1) {
+// Whether Hi-Z rejects triangle t's depth range (its vertices', widened by the margin that covers
+// the kernel's float rounding, as the block tests widen it) at every block of its box in this
+// tile, with `samples` samples per pixel (bounds out of date recomputed first).
+HWY_INLINE bool hidden_in_tile(const TileContext& tc, const TriangleSetup& t, uint32_t samples) {
+  const double margin = hiz_margin(t);
   float lo, hi;
-  hiz_range(tc, bt.z_floor, bt.z_ceil, lo, hi);
+  hiz_range(tc, t.z_min - margin, t.z_max + margin, lo, hi);
+  const int32_t bx0 = std::max(t.x0, tc.x0) >> 3, bx1 = std::min(t.x1, tc.x1) >> 3;
+  const int32_t by0 = std::max(t.y0, tc.y0) >> 3, by1 = std::min(t.y1, tc.y1) >> 3;
+  const int32_t tile_bx = tc.tile_x0 >> 3, tile_by = tc.tile_y0 >> 3;
   for (int32_t by = by0; by <= by1; ++by) {
     for (int32_t bx = bx0; bx <= bx1; ++bx) {
       const size_t block =
-          static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
-      if (hiz_dirty(tc, block)) refresh_hiz(tc, block, st.samples);
+          static_cast<size_t>((by - tile_by) * kBlocksPerTileSide + (bx - tile_bx));
+      if (hiz_dirty(tc, block)) refresh_hiz(tc, block, samples);
       if (hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]) !=
           HizVerdict::kReject) {
         return false;
@@ -921,6 +925,11 @@ HWY_INLINE bool hidden_in_tile(const TileContext& tc, const TriangleState& st, c
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
 HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
                                  Counters& counters) {
+  // Without counters: a triangle behind every block of its box in this tile is dropped before
+  // any block test. Its depth range over the whole triangle holds each block's range, so each
+  // block would have been rejected by its corner test or by Hi-Z, with nothing written (the
+  // counting kernels take the block tests, whose counts the early verdict would change).
+  if (!kCount && tc.hiz && hidden_in_tile(tc, t, kMulti ? tc.samples : 1)) return;
   const hn::ScalableTag<int32_t> di;
   const int shift = static_cast<int>(tc.subpixel_bits) - 4;
   TriangleState st;
@@ -959,11 +968,6 @@ HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
   bt.z_floor = t.z_min - bt.z_margin;
   bt.z_ceil = t.z_max + bt.z_margin;
 
-  // Without counters: a triangle behind every block of its box in this tile is dropped before
-  // the blocks' tests. Its depth range over the whole triangle holds each block's range, so
-  // each block would have been rejected by its corner test or by Hi-Z, with nothing written
-  // (the counting kernels take the block tests, whose counts the early verdict would change).
-  if (!kCount && tc.hiz && hidden_in_tile(tc, st, bt, bx0, by0, bx1, by1)) return;
   if (tc.coarse_blocks == 1) {
     visit_blocks<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1, lane_e2,
                                                  bx0, by0, bx1, by1, corner, true);
