@@ -316,6 +316,22 @@ void refresh_hiz(const TileContext& tc, size_t block, uint32_t samples) {
   tc.hiz_max[block] = hn::GetLane(hn::MaxOfLanes(df, hi));
 }
 
+// Hi-Z's verdict on block `block` of the tile for depth bounds [lo, hi] (hiz_range's), with
+// `samples` samples per pixel: its bounds are recomputed first when out of date.
+inline HizVerdict block_hiz_verdict(const TileContext& tc, size_t block, uint32_t samples, float lo,
+                                    float hi) {
+  if (hiz_dirty(tc, block)) refresh_hiz(tc, block, samples);
+  return hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]);
+}
+
+// A whole triangle's depth bounds for Hi-Z: its vertices' range, widened by the margin that
+// covers the kernel's float rounding (as the general path's block ranges are).
+inline void triangle_hiz_range(const TileContext& tc, const TriangleSetup& t, float& lo,
+                               float& hi) {
+  const double margin = hiz_margin(t);
+  hiz_range(tc, t.z_min - margin, t.z_max + margin, lo, hi);
+}
+
 // The planes' change from a block's first pixel centre to each of its pixels, gx * x + gy * y
 // (plane_at's inner sum, so base + offset is the same bits): the general path computes them once
 // per triangle, at its first covered block, for all its blocks.
@@ -679,11 +695,10 @@ HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, Trian
     const size_t block =
         static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
     const bool clipped_block = bx * 8 + 7 > tc.x1 || by * 8 + 7 > tc.y1;
-    if (hiz_dirty(tc, block)) refresh_hiz(tc, block, st.samples);
     float lo, hi;
     hiz_range(tc, std::max(z_corner + bt.z_lo_offset, bt.z_floor),
               std::min(z_corner + bt.z_hi_offset, bt.z_ceil), lo, hi);
-    const HizVerdict verdict = hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]);
+    const HizVerdict verdict = block_hiz_verdict(tc, block, st.samples, lo, hi);
     if (verdict == HizVerdict::kReject) {
       if constexpr (kCount) ++counters.hiz_rejected;
       return;
@@ -894,13 +909,11 @@ HWY_INLINE hn::Vec<DI> lane_steps(DI di, int32_t step_x, int32_t step_y) {
   return lane_steps(di, hn::Load(di, kPixels.x), step_x, step_y);
 }
 
-// Whether Hi-Z rejects triangle t's depth range (its vertices', widened by the margin that covers
-// the kernel's float rounding, as the block tests widen it) at every block of its box in this
-// tile, with `samples` samples per pixel (bounds out of date recomputed first).
+// Whether Hi-Z rejects triangle t's whole depth range (triangle_hiz_range) at every block of its
+// box in this tile, with `samples` samples per pixel.
 HWY_INLINE bool hidden_in_tile(const TileContext& tc, const TriangleSetup& t, uint32_t samples) {
-  const double margin = hiz_margin(t);
   float lo, hi;
-  hiz_range(tc, t.z_min - margin, t.z_max + margin, lo, hi);
+  triangle_hiz_range(tc, t, lo, hi);
   const int32_t bx0 = std::max(t.x0, tc.x0) >> 3, bx1 = std::min(t.x1, tc.x1) >> 3;
   const int32_t by0 = std::max(t.y0, tc.y0) >> 3, by1 = std::min(t.y1, tc.y1) >> 3;
   const int32_t tile_bx = tc.tile_x0 >> 3, tile_by = tc.tile_y0 >> 3;
@@ -908,11 +921,7 @@ HWY_INLINE bool hidden_in_tile(const TileContext& tc, const TriangleSetup& t, ui
     for (int32_t bx = bx0; bx <= bx1; ++bx) {
       const size_t block =
           static_cast<size_t>((by - tile_by) * kBlocksPerTileSide + (bx - tile_bx));
-      if (hiz_dirty(tc, block)) refresh_hiz(tc, block, samples);
-      if (hiz_test(tc.compare, lo, hi, tc.hiz_min[block], tc.hiz_max[block]) !=
-          HizVerdict::kReject) {
-        return false;
-      }
+      if (block_hiz_verdict(tc, block, samples, lo, hi) != HizVerdict::kReject) return false;
     }
   }
   return true;
@@ -1019,13 +1028,9 @@ HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, Coun
 
   int32_t e_row[3], reach[3];
   small_block_edges(tc, t, st, bx0, by0, e_row, reach);
-  // Hi-Z (kHiz): the triangle's depth range (its vertices', widened by the margin that covers
-  // the kernel's float rounding, as the general path's) against each block's bounds.
+  // Hi-Z (kHiz): the triangle's whole depth range against each block's bounds.
   float hiz_lo = 0.0f, hiz_hi = 0.0f;
-  if constexpr (kHiz) {
-    const double margin = hiz_margin(t);
-    hiz_range(tc, t.z_min - margin, t.z_max + margin, hiz_lo, hiz_hi);
-  }
+  if constexpr (kHiz) triangle_hiz_range(tc, t, hiz_lo, hiz_hi);
   uint64_t rejected = 0, visited = 0, hiz_rejected = 0;
   for (int32_t by = by0; by <= by1; ++by) {
     int32_t e_block[3] = {e_row[0], e_row[1], e_row[2]};
@@ -1039,9 +1044,7 @@ HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, Coun
       if (kHiz && !outside) {
         const size_t block =
             static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
-        if (hiz_dirty(tc, block)) refresh_hiz(tc, block, st.samples);
-        hidden = hiz_test(tc.compare, hiz_lo, hiz_hi, tc.hiz_min[block], tc.hiz_max[block]) ==
-                 HizVerdict::kReject;
+        hidden = block_hiz_verdict(tc, block, st.samples, hiz_lo, hiz_hi) == HizVerdict::kReject;
         hiz_rejected += hidden ? 1 : 0;
       }
       if (outside) {
