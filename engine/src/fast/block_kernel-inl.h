@@ -54,6 +54,12 @@ namespace {
 constexpr size_t kSamplePlane = binning::kTilePixels;  // values between two samples' planes
 using detail::kBlocksPerTileSide;
 
+// Block (bx, by)'s index in the storage tile whose first block is (tile_bx, tile_by), all in
+// blocks from the screen's origin.
+HWY_INLINE size_t tile_block(int32_t bx, int32_t by, int32_t tile_bx, int32_t tile_by) {
+  return static_cast<size_t>((by - tile_by) * kBlocksPerTileSide + (bx - tile_bx));
+}
+
 // Pixel coordinates of the 64 lanes of a block, row-major.
 struct PixelTables {
   alignas(64) int32_t x[64];
@@ -399,8 +405,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
   const size_t lanes = hn::Lanes(di);
   const uint32_t samples = kMulti ? st.samples : 1;  // a constant 1 unrolls the sample loop
 
-  const size_t block =
-      static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
+  const size_t block = tile_block(bx, by, st.tile_bx, st.tile_by);
   const int32_t cols = std::min<int32_t>(8, tc.x1 + 1 - bx * 8);
   const int32_t rows = std::min<int32_t>(8, tc.y1 + 1 - by * 8);
   const bool clipped_block = cols < 8 || rows < 8;
@@ -692,8 +697,7 @@ HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, Trian
 
   bool test_depth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
   if (tc.hiz) {
-    const size_t block =
-        static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
+    const size_t block = tile_block(bx, by, st.tile_bx, st.tile_by);
     const bool clipped_block = bx * 8 + 7 > tc.x1 || by * 8 + 7 > tc.y1;
     float lo, hi;
     hiz_range(tc, std::max(z_corner + bt.z_lo_offset, bt.z_floor),
@@ -919,8 +923,7 @@ HWY_INLINE bool hidden_in_tile(const TileContext& tc, const TriangleSetup& t, ui
   const int32_t tile_bx = tc.tile_x0 >> 3, tile_by = tc.tile_y0 >> 3;
   for (int32_t by = by0; by <= by1; ++by) {
     for (int32_t bx = bx0; bx <= bx1; ++bx) {
-      const size_t block =
-          static_cast<size_t>((by - tile_by) * kBlocksPerTileSide + (bx - tile_bx));
+      const size_t block = tile_block(bx, by, tile_bx, tile_by);
       if (block_hiz_verdict(tc, block, samples, lo, hi) != HizVerdict::kReject) return false;
     }
   }
@@ -1042,8 +1045,7 @@ HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, Coun
       ++visited;
       bool hidden = false;
       if (kHiz && !outside) {
-        const size_t block =
-            static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (bx - st.tile_bx));
+        const size_t block = tile_block(bx, by, st.tile_bx, st.tile_by);
         hidden = block_hiz_verdict(tc, block, st.samples, hiz_lo, hiz_hi) == HizVerdict::kReject;
         hiz_rejected += hidden ? 1 : 0;
       }
@@ -1246,8 +1248,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
     };
     if (hn::AllFalse(di, cov_any)) continue;
 
-    const size_t block_a =
-        static_cast<size_t>((by - st.tile_by) * kBlocksPerTileSide + (window_bx - st.tile_bx));
+    const size_t block_a = tile_block(window_bx, by, st.tile_bx, st.tile_by);
     const size_t block_b = block_a + 1;
     const size_t at_a = block_a * 64 + static_cast<size_t>(r * 8);
     const size_t at_b = block_b * 64 + static_cast<size_t>(r * 8);
