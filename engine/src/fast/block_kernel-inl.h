@@ -1521,8 +1521,7 @@ HWY_INLINE uint32_t centres_inside(const TileContext& tc, const TriangleSetup& t
 // block of the box's first pixel (x0, y0).
 struct PixelSite {
   PixelSite(const TileContext& tc, int32_t x0, int32_t y0, int32_t x, int32_t y)
-      : block(static_cast<size_t>(((y - tc.tile_y0) >> 3) * kBlocksPerTileSide +
-                                  ((x - tc.tile_x0) >> 3))),
+      : block(tile_block((x - tc.tile_x0) >> 3, (y - tc.tile_y0) >> 3, 0, 0)),
         index(block * 64 + static_cast<size_t>((y & 7) * 8 + (x & 7))),
         block_bit(1u << ((((y >> 3) - (y0 >> 3)) << 1) + ((x >> 3) - (x0 >> 3)))) {}
   size_t block, index;
