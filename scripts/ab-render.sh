@@ -7,8 +7,9 @@
 #
 # usage: OLD=path NEW=path scripts/ab-render.sh WORKLOAD SAMPLES THREADS ROUNDS REPEAT [args...]
 # environment: TESSERA_WORKLOADS (default build/workloads) holds WORKLOAD.tri; OLD_ARGS and
-#   NEW_ARGS add arguments to one side only; PIN_CPU (default 0) for one-thread runs; extra
-#   arguments go to both.
+#   NEW_ARGS add arguments to one side only; OLD_SAMPLES and NEW_SAMPLES replace SAMPLES on one
+#   side (with OLD = NEW, the cost of multisampling: NEW_SAMPLES=4 ... WORKLOAD 1 ...); PIN_CPU
+#   (default 0) for one-thread runs; extra arguments go to both.
 set -euo pipefail
 if [ $# -lt 5 ] || [ -z "${OLD:-}" ] || [ -z "${NEW:-}" ]; then
   echo "usage: OLD=path NEW=path $0 WORKLOAD SAMPLES THREADS ROUNDS REPEAT [args...]" >&2
@@ -30,9 +31,13 @@ for ((r = 0; r < rounds; r++)); do
   order=(old new)
   if ((r % 2)); then order=(new old); fi
   for side in "${order[@]}"; do
-    if [ "$side" = old ]; then bin=$OLD extra=${OLD_ARGS:-}; else bin=$NEW extra=${NEW_ARGS:-}; fi
+    if [ "$side" = old ]; then
+      bin=$OLD extra=${OLD_ARGS:-} side_samples=${OLD_SAMPLES:-$samples}
+    else
+      bin=$NEW extra=${NEW_ARGS:-} side_samples=${NEW_SAMPLES:-$samples}
+    fi
     # shellcheck disable=SC2086  # extra: words to split
-    line=$("${pin[@]}" "$bin" "$capture" $extra --no-counters -s "$samples" --threads "$threads" \
+    line=$("${pin[@]}" "$bin" "$capture" $extra --no-counters -s "$side_samples" --threads "$threads" \
       --repeat "$repeat" -o "$scratch/$side.png" "$@" | grep 'frames=')
     [[ $line =~ min_ms=([^ ]+) ]] && min=${BASH_REMATCH[1]}
     [[ $line =~ median_ms=([^ ]+) ]] && median=${BASH_REMATCH[1]}
