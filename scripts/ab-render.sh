@@ -37,8 +37,8 @@ for ((r = 0; r < rounds; r++)); do
       bin=$NEW extra=${NEW_ARGS:-} side_samples=${NEW_SAMPLES:-$samples}
     fi
     # shellcheck disable=SC2086  # extra: words to split
-    line=$("${pin[@]}" "$bin" "$capture" $extra --no-counters -s "$side_samples" --threads "$threads" \
-      --repeat "$repeat" -o "$scratch/$side.png" "$@" | grep 'frames=')
+    line=$("${pin[@]}" "$bin" "$capture" $extra --no-counters -s "$side_samples" \
+      --threads "$threads" --repeat "$repeat" -o "$scratch/$side.png" "$@" | grep 'frames=')
     [[ $line =~ min_ms=([^ ]+) ]] && min=${BASH_REMATCH[1]}
     [[ $line =~ median_ms=([^ ]+) ]] && median=${BASH_REMATCH[1]}
     if [ "$side" = old ]; then old_runs+=("$min:$median"); else new_runs+=("$min:$median"); fi
