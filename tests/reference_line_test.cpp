@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tests/primitive_test_support.hpp"
+#include "tests/watchdog.hpp"
 
 namespace tessera::test {
 namespace {
@@ -297,6 +298,30 @@ TEST(ReferenceLines, LinesBeyondTheGuardBandAndNearPlaneAreClippedInClipSpace) {
   // Wholly behind the near plane: nothing.
   EXPECT_TRUE(clip_line({-0.5f, 0, -0.5f, 1}, {0.5f, 0, -0.25f, 1}).empty());
   (void)vp;
+}
+
+// A segment from A to a vertex at w = 0 (the homogeneous origin, or a point at infinity too
+// near it to leave the w plane's reach) is cut at the w plane next to A: it projects onto A's
+// window point and draws nothing. With the cut computed as a + t (b - a), t rounded to 1 and the
+// vertex at w = 0 was kept as it was, and the viewport transform divided by 0.
+TEST(ReferenceLines, LinesToVerticesAtWZeroAreCutAtTheWPlaneNextToTheirOtherEnd) {
+  const Watchdog watchdog(60);                    // the division by 0 led the line walk on forever
+  const Float4 a = {-0.4375f, 0.5625f, 0.5f, 1};  // window (4.5, 3.5)
+  for (const Float4& b : {Float4{0, 0, 0, 0}, Float4{1e-45f, 0, 0, 0}}) {
+    for (LineAlgorithm algorithm :
+         {LineAlgorithm::kDiamondExit, LineAlgorithm::kBresenham, LineAlgorithm::kDDA}) {
+      SCOPED_TRACE(b.x);
+      LineState state;
+      state.algorithm = algorithm;
+      const PixelSet drawn = touched(16, 16, [&](Renderer& r, Framebuffer& fb) {
+        const std::vector<Float4> pos = {a, b};
+        const std::vector<float> rgba = {1, 1, 1, 1, 1, 1, 1, 1};
+        r.draw_lines(fb, touch_pipeline(), state, {pos, rgba, 4, {}});
+      });
+      EXPECT_LE(drawn.size(), 1u) << describe(drawn);
+      EXPECT_TRUE(drawn.empty() || *drawn.begin() == Pixel(4, 3)) << describe(drawn);
+    }
+  }
 }
 
 TEST(ReferenceLines, LinesAreDepthTested) {

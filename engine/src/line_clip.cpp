@@ -22,8 +22,12 @@ ClipVertex load_clip_vertex(const DrawInput& input, const PipelineState& pipelin
 
 namespace {
 
-ClipVertex lerp(const ClipVertex& p, const ClipVertex& q, double t, uint32_t attribute_count) {
-  auto mix = [t](double u, double v) { return u + t * (v - u); };
+// s p + t q, with s = 1 - t computed by the caller from the plane distances (clip.cpp's
+// intersect: when an outside vertex's distance is tiny next to the inside one's, t rounds to 1
+// and p + t (q - p) would lose p entirely).
+ClipVertex lerp(const ClipVertex& p, const ClipVertex& q, double s, double t,
+                uint32_t attribute_count) {
+  auto mix = [s, t](double u, double v) { return s * u + t * v; };
   ClipVertex r;
   r.x = mix(p.x, q.x);
   r.y = mix(p.y, q.y);
@@ -57,15 +61,27 @@ bool clip_line(ClipVertex& a, ClipVertex& b, uint32_t attribute_count, GuardBand
                                  g.y * v.w - v.y};
   };
   const auto da = distances(a), db = distances(b);
-  double t0 = 0.0, t1 = 1.0;
+  // The cut points (1 - t) a + t b, with 1 - t as s from the distances; among planes whose t
+  // rounds the same, the one whose s is nearer the other endpoint cuts. An endpoint outside a
+  // plane is always cut and pinned, even when its t rounds to 0 or 1: a vertex at w = 0 kept
+  // as it is would be divided by 0 in the viewport transform.
+  double t0 = 0.0, t1 = 1.0, s0 = 1.0, s1 = 0.0;
+  bool a_out = false, b_out = false;
   for (int i = 0; i < 7; ++i) {
     const bool a_in = da[i] >= 0.0, b_in = db[i] >= 0.0;
     if (!a_in && !b_in) return false;
-    if (!a_in) t0 = std::max(t0, da[i] / (da[i] - db[i]));
-    if (!b_in) t1 = std::min(t1, da[i] / (da[i] - db[i]));
+    const double t = da[i] / (da[i] - db[i]), s = -db[i] / (da[i] - db[i]);
+    if (!a_in) {
+      a_out = true;
+      if (t > t0 || (t == t0 && s < s0)) t0 = t, s0 = s;
+    }
+    if (!b_in) {
+      b_out = true;
+      if (t < t1 || (t == t1 && s > s1)) t1 = t, s1 = s;
+    }
   }
   if (!(t0 <= t1)) return false;
-  if (t0 == 0.0 && t1 == 1.0) return true;
+  if (!a_out && !b_out) return true;
 
   const bool affine = interpolation == Interpolation::kAffine;
   ClipVertex pa = a, pb = b;
@@ -75,8 +91,8 @@ bool clip_line(ClipVertex& a, ClipVertex& b, uint32_t attribute_count, GuardBand
       pb.attributes[i] *= pb.w;
     }
   }
-  auto cut = [&](double t) {
-    ClipVertex v = lerp(pa, pb, t, attribute_count);
+  auto cut = [&](double s, double t) {
+    ClipVertex v = lerp(pa, pb, s, t, attribute_count);
     pin(v, g);
     if (affine) {
       for (uint32_t i = 0; i < attribute_count; ++i)
@@ -84,8 +100,8 @@ bool clip_line(ClipVertex& a, ClipVertex& b, uint32_t attribute_count, GuardBand
     }
     return v;
   };
-  const ClipVertex na = t0 > 0.0 ? cut(t0) : a;
-  const ClipVertex nb = t1 < 1.0 ? cut(t1) : b;
+  const ClipVertex na = a_out ? cut(s0, t0) : a;
+  const ClipVertex nb = b_out ? cut(s1, t1) : b;
   a = na;
   b = nb;
   return true;
