@@ -17,6 +17,7 @@
 #include "tessera/tessera.hpp"
 #include "tests/file_error.hpp"
 #include "tests/temp_dir.hpp"
+#include "tests/watchdog.hpp"
 
 namespace tessera {
 namespace {
@@ -143,6 +144,23 @@ TEST(MeshLoading, ObjQuadBecomesTwoTrianglesWithComputedNormals) {
   TempDir dir;
   write_file(dir / "quad.obj", kQuadObj);
   expect_unit_quad(load_mesh(dir / "quad.obj"));
+}
+
+// Float cross products of the edges overflow at these scales: past 2^31 the normals came out
+// 0, past 2^63 NaN. Normals do not depend on the scale.
+TEST(MeshLoading, NormalsOfHugeMeshesAreTheUnitNormalsOfTheirFaces) {
+  TempDir dir;
+  for (const char* scale : {"1e10", "1e30", "3e38"}) {
+    SCOPED_TRACE(scale);
+    const std::string s = scale;
+    write_file(dir / "huge.obj",
+               "v 0 0 0\nv " + s + " 0 0\nv " + s + " " + s + " 0\nv 0 " + s + " 0\nf 1 2 3 4\n");
+    const Mesh mesh = load_mesh(dir / "huge.obj");
+    expect_consistent(mesh);
+    ASSERT_EQ(mesh.normals.size(), 4u);
+    for (const glm::vec3& n : mesh.normals)
+      EXPECT_EQ(n, glm::vec3(0, 0, 1));
+  }
 }
 
 TEST(MeshLoading, ObjVertexColoursBecomeTheMeshColours) {
@@ -338,6 +356,26 @@ TEST(MeshLoading, PlyListLengthThatIsNotANumberIsRejected) {
                                    "element face 1\nproperty list uchar int vertex_indices\n"
                                    "end_header\n0 0 0\n1 0 0\n0 1 0\n2.5 0 1 2\n");
   expect_load_error(dir / "list.ply", ErrorCode::kInvalidInput, {"face 0", "list length '2.5'"});
+}
+
+// Assimp 5.2's PLY reader never returns from a header without end_header (or reads past the
+// end of the file); the loader's own header walk must find that even where it stops following
+// the header (a property type it does not know, a property before any element, a first line
+// that Assimp takes for the magic but is not "ply").
+TEST(MeshLoading, PlyHeaderWithoutEndHeaderIsRejectedWhateverElseItHolds) {
+  TempDir dir;
+  write_file(dir / "upper.ply", "PLY\nformat ascii 1.0\nelement vertex 1\nproperty float x\n1\n");
+  write_file(dir / "magic.ply", "plyZZ\nformat ascii 1.0\nelement vertex 1\nproperty float x\n1\n");
+  write_file(dir / "type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty flo x\n1\n");
+  write_file(dir / "order.ply", "ply\nformat ascii 1.0\nproperty float x\nelement vertex 1\n1\n");
+  write_file(dir / "list.ply", std::string(kPlyHeader) +
+                                   "element face 1\nproperty list double int vertex_indices\n" +
+                                   "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const test::Watchdog watchdog(60);
+  for (const char* name : {"upper.ply", "magic.ply", "type.ply", "order.ply", "list.ply"}) {
+    SCOPED_TRACE(name);
+    expect_load_error(dir / name, ErrorCode::kInvalidInput, {"without end_header"});
+  }
 }
 
 // A binary PLY quad: 4 float vertices, one face of 4 int indices with a uchar length, in the

@@ -204,7 +204,8 @@ class Utf8TextIOSystem : public Assimp::DefaultIOSystem {
 // the body holds them: a file cut short loads with its last face repeated or with vertices
 // read from past the end. So the body is walked here (numbers are not converted, only list
 // lengths read) and must hold exactly what the header declares; whitespace may follow in ASCII.
-// Anything this walk does not understand (a bad magic, an unknown type) is left to Assimp.
+// Anything this walk does not understand (a bad magic, an unknown type) is left to Assimp, but
+// only a header that ends: Assimp 5.2's reader never returns from a header without end_header.
 
 struct PlyProperty {
   int size = 0;  // bytes of a scalar, or of one list item
@@ -240,15 +241,23 @@ void check_ply_counts(const std::filesystem::path& path) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     return true;
   };
-  if (!next_line() || line != "ply") return;
+  // Assimp takes any file whose first line starts with "ply", in any case, for PLY.
+  if (!next_line() || line.size() < 3 ||
+      !std::equal(line.begin(), line.begin() + 3, "ply", [](char a, char b) {
+        return std::tolower(static_cast<unsigned char>(a)) == b;
+      })) {
+    return;
+  }
   enum class Format { kUnknown, kAscii, kLittle, kBig } format = Format::kUnknown;
   std::vector<PlyElement> elements;
+  bool understood = line == "ply";  // every header line so far is one this walk can follow
   for (;;) {
     if (!next_line()) bad(path, "PLY header without end_header");
     std::istringstream words(line);
     std::string word;
     words >> word;
     if (word == "end_header") break;
+    if (!understood) continue;
     if (word == "format") {
       words >> word;
       format = word == "ascii"                  ? Format::kAscii
@@ -258,10 +267,9 @@ void check_ply_counts(const std::filesystem::path& path) {
     } else if (word == "element") {
       PlyElement e;
       words >> e.name >> e.count;
-      if (!words) return;
-      elements.push_back(e);
+      understood = static_cast<bool>(words);
+      if (understood) elements.push_back(e);
     } else if (word == "property") {
-      if (elements.empty()) return;
       PlyProperty p;
       words >> word;
       if (word == "list") {
@@ -270,15 +278,15 @@ void check_ply_counts(const std::filesystem::path& path) {
         std::tie(p.count_size, p.count_signed) = ply_type(count_type);
         p.size = ply_type(item_type).first;
         p.list = true;
-        if (p.count_size == 0 || p.count_size == 8) return;
       } else {
         p.size = ply_type(word).first;
       }
-      if (p.size == 0) return;
-      elements.back().properties.push_back(p);
+      understood =
+          !elements.empty() && p.size != 0 && (!p.list || (p.count_size != 0 && p.count_size != 8));
+      if (understood) elements.back().properties.push_back(p);
     }
   }
-  if (format == Format::kUnknown) return;
+  if (!understood || format == Format::kUnknown) return;
 
   std::streambuf& body = *in.rdbuf();
   const auto truncated = [&](const PlyElement& e, uint64_t complete) {
@@ -621,12 +629,26 @@ Mesh load_point_cloud(const std::filesystem::path& path) {
 }
 
 void compute_normals(Mesh& mesh) {
+  // Normals do not depend on the mesh's scale, but float products of its edges do: past
+  // coordinates of about 2^31 a cross product's squared length overflows (the normal comes out
+  // 0), past 2^63 the cross product itself (inf / inf, NaN). So the positions are scaled by the
+  // power of two that brings the largest coordinate into [0.5, 1). That is exact: a mesh whose
+  // products neither overflow nor underflow gets the same bits as unscaled.
+  float largest = 0.0f;
+  for (const glm::vec3& p : mesh.positions)
+    largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  int exponent = 0;
+  if (std::isfinite(largest)) std::frexp(largest, &exponent);
+  const auto at = [&](uint32_t i) {
+    return glm::vec3(std::ldexp(mesh.positions[i].x, -exponent),
+                     std::ldexp(mesh.positions[i].y, -exponent),
+                     std::ldexp(mesh.positions[i].z, -exponent));
+  };
   mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
   for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
     const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
     // The cross product's length is twice the triangle's area: an area-weighted sum.
-    const glm::vec3 n =
-        glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+    const glm::vec3 n = glm::cross(at(b) - at(a), at(c) - at(a));
     mesh.normals[a] += n;
     mesh.normals[b] += n;
     mesh.normals[c] += n;
