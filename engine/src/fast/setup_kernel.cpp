@@ -620,10 +620,13 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const LaneConstants& lc,
     // The boxes whose samples are tested: with sample records, also boxes of four rows (of at
     // most three pixels), which become records when at most kSampleRecordPixels pixels have a
     // covered sample (their pixels lie within 4 px of the vertices' box: the bound above holds).
-    const auto tested =
-        ctx.sample_records
-            ? hn::And(hn::And(hn::Le(last_x, two), hn::Le(last_y, hn::Set(d, 3.0))), small)
-            : fits;
+    // Only kept lanes: a lane a clip plane cuts holds values that may be NaN here (a vertex
+    // at w = 0), which the tests' conversions to integers must not see (they are undefined
+    // for NaN on the scalar target); the scalar clipper sets such triangles up.
+    const auto tested = hn::And(
+        keep, ctx.sample_records
+                  ? hn::And(hn::And(hn::Le(last_x, two), hn::Le(last_y, hn::Set(d, 3.0))), small)
+                  : fits);
     const uint32_t tested_pixels = ctx.sample_records ? kSampleRecordBoxPixels : setup_pixels;
     // Lanes of two samples each: each 64-bit box lane split into two 32-bit lanes, one sample's
     // values in each. Targets with one lane per vector (HWY_SCALAR) test one sample per 64-bit
