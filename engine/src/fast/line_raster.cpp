@@ -375,6 +375,12 @@ LineShading line_shading(const WindowSegment& seg, const PipelineState& pipeline
 // gathered into a run, shaded by the SIMD kernel, and written by a short scalar loop that does
 // what TileWriter::write does for them (depth test and write, colour store, counters).
 struct RunWriter {
+  // A constructor, not aggregate initialization: std::optional::emplace of an aggregate from
+  // parentheses needs C++20's P0960, which Clang implements only from version 16.
+  RunWriter(detail::FramebufferStorage& storage, const PipelineState& state, LineShadeFn shader,
+            Counters& tile_counters)
+      : fb(storage), pipeline(state), shade(shader), counters(tile_counters) {}
+
   detail::FramebufferStorage& fb;
   const PipelineState& pipeline;
   LineShadeFn shade;
