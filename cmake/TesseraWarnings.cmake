@@ -8,6 +8,11 @@ if(TESSERA_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
   add_link_options(-fsanitize=address,undefined)
 endif()
+# Coverage instrumentation for libFuzzer in every target; only the fuzz targets link the
+# fuzzer's main (tests/fuzz/CMakeLists.txt).
+if(TESSERA_FUZZING)
+  add_compile_options(-fsanitize=fuzzer-no-link)
+endif()
 
 function(tessera_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
