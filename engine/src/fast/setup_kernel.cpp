@@ -445,7 +445,16 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const LaneConstants& lc,
     Z[k] = kUnitW ? z : quotient(z, w, IW[k]);
   }
   const auto inside = hn::Ge(nearest, zero);
-  // Lanes outside a plane go to the scalar clipper; give them harmless values here.
+  // Lanes outside a plane go to the scalar clipper. Their values here may be NaN or infinite (a
+  // vertex at w = 0, or one that is not finite where such vertices are culled): they are made
+  // zero, so that no conversion to integers below (undefined for NaN on the scalar target)
+  // sees them, and the lanes are neither kept nor binned (zero area).
+  for (int k = 0; k < 3; ++k) {
+    X[k] = hn::IfThenElseZero(inside, X[k]);
+    Y[k] = hn::IfThenElseZero(inside, Y[k]);
+    Z[k] = hn::IfThenElseZero(inside, Z[k]);
+    IW[k] = hn::IfThenElseZero(inside, IW[k]);
+  }
   V area = hn::Sub(hn::Mul(hn::Sub(X[1], X[0]), hn::Sub(Y[2], Y[0])),
                    hn::Mul(hn::Sub(Y[1], Y[0]), hn::Sub(X[2], X[0])));
   // y points down in window space: counter-clockwise in NDC means negative area here.
@@ -620,13 +629,10 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const LaneConstants& lc,
     // The boxes whose samples are tested: with sample records, also boxes of four rows (of at
     // most three pixels), which become records when at most kSampleRecordPixels pixels have a
     // covered sample (their pixels lie within 4 px of the vertices' box: the bound above holds).
-    // Only kept lanes: a lane a clip plane cuts holds values that may be NaN here (a vertex
-    // at w = 0), which the tests' conversions to integers must not see (they are undefined
-    // for NaN on the scalar target); the scalar clipper sets such triangles up.
-    const auto tested = hn::And(
-        keep, ctx.sample_records
-                  ? hn::And(hn::And(hn::Le(last_x, two), hn::Le(last_y, hn::Set(d, 3.0))), small)
-                  : fits);
+    const auto tested =
+        ctx.sample_records
+            ? hn::And(hn::And(hn::Le(last_x, two), hn::Le(last_y, hn::Set(d, 3.0))), small)
+            : fits;
     const uint32_t tested_pixels = ctx.sample_records ? kSampleRecordBoxPixels : setup_pixels;
     // Lanes of two samples each: each 64-bit box lane split into two 32-bit lanes, one sample's
     // values in each. Targets with one lane per vector (HWY_SCALAR) test one sample per 64-bit
