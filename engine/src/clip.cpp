@@ -62,16 +62,7 @@ ClipVertex intersect(const ClipVertex& inside, double d_in, const ClipVertex& ou
                      uint32_t attribute_count) {
   const double t = d_in / (d_in - d_out);
   const double s = -d_out / (d_in - d_out);
-  auto lerp = [s, t](double p, double q) { return s * p + t * q; };
-  ClipVertex r;
-  r.x = lerp(inside.x, outside.x);
-  r.y = lerp(inside.y, outside.y);
-  r.z = lerp(inside.z, outside.z);
-  r.w = lerp(inside.w, outside.w);
-  for (uint32_t i = 0; i < attribute_count; ++i) {
-    r.attributes[i] = lerp(inside.attributes[i], outside.attributes[i]);
-  }
-  return r;
+  return weighted_sum(inside, s, outside, t, attribute_count);
 }
 
 // Clips `poly` against one plane in place. Returns whether the plane cut anything.
@@ -138,6 +129,20 @@ ClipResult clip_triangle(const std::array<ClipVertex, 3>& in, uint32_t attribute
   }
   result.visible = true;
   return result;
+}
+
+ClipVertex weighted_sum(const ClipVertex& p, double s, const ClipVertex& q, double t,
+                        uint32_t attribute_count) {
+  auto mix = [s, t](double u, double v) { return s * u + t * v; };
+  ClipVertex r;
+  r.x = mix(p.x, q.x);
+  r.y = mix(p.y, q.y);
+  r.z = mix(p.z, q.z);
+  r.w = mix(p.w, q.w);
+  for (uint32_t i = 0; i < attribute_count; ++i) {
+    r.attributes[i] = mix(p.attributes[i], q.attributes[i]);
+  }
+  return r;
 }
 
 }  // namespace tessera

@@ -49,6 +49,12 @@ struct GuardBand {
   }
 };
 
+// s p + t q for position and the first `attribute_count` attributes: a point of segment p -> q
+// with both weights given, the inside vertex's computed on its own rather than as 1 - t (see
+// clip.cpp's intersect), so that a tiny distance next to a large one does not lose that vertex.
+ClipVertex weighted_sum(const ClipVertex& p, double s, const ClipVertex& q, double t,
+                        uint32_t attribute_count);
+
 // Clips triangle `in` (3 vertices) into `out` (a convex polygon, same winding, to be drawn
 // as the fan out[0], out[i], out[i+1]). Only the first `attribute_count` attributes are
 // interpolated. An intersection is always computed from the inside vertex towards the outside

@@ -22,22 +22,6 @@ ClipVertex load_clip_vertex(const DrawInput& input, const PipelineState& pipelin
 
 namespace {
 
-// s p + t q, with s = 1 - t computed by the caller from the plane distances (clip.cpp's
-// intersect: when an outside vertex's distance is tiny next to the inside one's, t rounds to 1
-// and p + t (q - p) would lose p entirely).
-ClipVertex lerp(const ClipVertex& p, const ClipVertex& q, double s, double t,
-                uint32_t attribute_count) {
-  auto mix = [s, t](double u, double v) { return s * u + t * v; };
-  ClipVertex r;
-  r.x = mix(p.x, q.x);
-  r.y = mix(p.y, q.y);
-  r.z = mix(p.z, q.z);
-  r.w = mix(p.w, q.w);
-  for (uint32_t i = 0; i < attribute_count; ++i)
-    r.attributes[i] = mix(p.attributes[i], q.attributes[i]);
-  return r;
-}
-
 // Keeps a computed endpoint inside the planes despite rounding (see clip.cpp's put_on).
 void pin(ClipVertex& v, GuardBand g) {
   v.w = std::max(v.w, kMinClipW);
@@ -92,7 +76,7 @@ bool clip_line(ClipVertex& a, ClipVertex& b, uint32_t attribute_count, GuardBand
     }
   }
   auto cut = [&](double s, double t) {
-    ClipVertex v = lerp(pa, pb, s, t, attribute_count);
+    ClipVertex v = weighted_sum(pa, s, pb, t, attribute_count);
     pin(v, g);
     if (affine) {
       for (uint32_t i = 0; i < attribute_count; ++i)
