@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <numeric>
 
+#include "engine/src/clip.hpp"
+
 namespace tessera {
 
 std::vector<uint32_t> vertex_order(const DrawInput& input) {
@@ -120,14 +122,8 @@ void clip_contour(std::vector<ClipVertex>& poly, Distance distance, uint32_t att
       // Always from the inside vertex towards the outside one.
       const size_t in = p_in ? i : j, o = p_in ? j : i;
       const double t = d[in] / (d[in] - d[o]);
-      ClipVertex r;
-      auto mix = [t](double u, double v) { return u + t * (v - u); };
-      r.x = mix(poly[in].x, poly[o].x);
-      r.y = mix(poly[in].y, poly[o].y);
-      r.z = mix(poly[in].z, poly[o].z);
-      r.w = mix(poly[in].w, poly[o].w);
-      for (uint32_t k = 0; k < attribute_count; ++k)
-        r.attributes[k] = mix(poly[in].attributes[k], poly[o].attributes[k]);
+      const double s = -d[o] / (d[in] - d[o]);
+      ClipVertex r = weighted_sum(poly[in], s, poly[o], t, attribute_count);
       r.w = std::max(r.w, kMinClipW);
       r.z = std::clamp(r.z, 0.0, r.w);
       r.x = std::clamp(r.x, -g.x * r.w, g.x * r.w);
