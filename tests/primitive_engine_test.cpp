@@ -345,6 +345,61 @@ TEST(PrimitiveEngine, WideLinesWithJoinsMatchTheReference) {
   }
 }
 
+// Wide lines, a miter join and square points whose ends lie near the guard band's reach at
+// w = 2^127, where the clip coordinates of a rectangle's corner, a miter's tip or a point's
+// corner pass the largest float: each backend draws the same bytes as at w = 1, and the fast
+// engine the reference's. (Converted back to clip space as they were, those corners became
+// infinite, their clipped vertices NaN, and NaN reached the conversions to fixed point.)
+TEST(PrimitiveEngine, WideLinesAndPointsNearTheLargestWDrawAsAtWOne) {
+  const float far_x = 1.5f * kWidth - 1.0f, far_y = 1.5f * kHeight - 1.0f;
+  auto scene = [&](float w) {
+    std::vector<Soup> draws(3, Soup(5));
+    Soup& lines = draws[0];
+    for (int i = 0; i < 8; ++i) {
+      const float x = 20.0f + 20.0f * static_cast<float>(i),
+                  y = 10.0f + 12.0f * static_cast<float>(i);
+      lines.vertex(x, y, depth_of(i), w);
+      lines.vertex(i % 2 ? far_x : -0.5f * kWidth + 1.0f, i % 2 ? far_y : -0.5f * kHeight + 1.0f,
+                   depth_of(i), w);
+    }
+    Soup& strip = draws[1];  // turns back sharply beyond the bottom right corner
+    strip.vertex(30.0f, 100.0f, depth_of(20), w);
+    strip.vertex(far_x, far_y, depth_of(20), w);
+    strip.vertex(60.0f, 110.0f, depth_of(20), w);
+    Soup& points = draws[2];
+    for (int i = 0; i < 4; ++i)
+      points.vertex(far_x - static_cast<float>(i), far_y, depth_of(30 + i), w);
+    return draws;
+  };
+  const std::vector<Soup> at_one = scene(1.0f), at_largest = scene(0x1p127f);
+  auto draw = [](const std::vector<Soup>& draws) {
+    return [&draws](Renderer& r, Framebuffer& fb) {
+      LineState state;
+      state.width = 8.0f;
+      r.draw_lines(fb, always(), state, draws[0].input());
+      state.topology = LineTopology::kStrip;
+      state.join = LineJoin::kMiter;
+      state.miter_limit = 100.0f;
+      r.draw_lines(fb, always(), state, draws[1].input());
+      r.draw_points(fb, always(), {8.0f, PointShape::kSquare}, draws[2].input());
+    };
+  };
+  std::vector<std::pair<Backend, Config>> configs = {{Backend::kReference, {SimdTarget::kAuto, 1}}};
+  for (const Config& config : all_configs())
+    configs.push_back({Backend::kFast, config});
+  for (const auto& [backend, config] : configs) {
+    SCOPED_TRACE(testing::Message()
+                 << (backend == Backend::kFast ? "fast " : "reference ")
+                 << static_cast<int>(config.target) << ", " << config.threads << " threads");
+    const Image one = render(draw(at_one), backend, config);
+    const Image largest = render(draw(at_largest), backend, config);
+    EXPECT_GT(one.counters.samples_passed, 1000u);
+    EXPECT_EQ(largest.rgba8, one.rgba8);
+    EXPECT_EQ(depth_mismatches(largest, one), 0u);
+  }
+  expect_engine_matches(draw(at_largest), false);
+}
+
 TEST(PrimitiveEngine, SquarePointsMatchTheReference) {
   for (int size : {1, 3, 8}) {
     Soup soup(7);

@@ -4,6 +4,7 @@
 #include "engine/src/primitive_triangles.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -13,12 +14,28 @@ namespace tessera {
 
 void TriangleList::add_window(const WindowPoint& a, const WindowPoint& b, const WindowPoint& c,
                               uint32_t width, uint32_t height) {
-  for (const WindowPoint* p : {&a, &b, &c}) {
-    const double w = 1.0 / p->inv_w;
-    positions.push_back({static_cast<float>((2.0 * p->x / width - 1.0) * w),
-                         static_cast<float>((1.0 - 2.0 * p->y / height) * w),
-                         static_cast<float>(p->z * w), static_cast<float>(w)});
-    colors.insert(colors.end(), p->color.begin(), p->color.end());
+  std::array<std::array<double, 4>, 3> clip;
+  double largest = 0.0;
+  const std::array<const WindowPoint*, 3> points = {&a, &b, &c};
+  for (int i = 0; i < 3; ++i) {
+    const WindowPoint& p = *points[i];
+    const double w = 1.0 / p.inv_w;
+    clip[i] = {(2.0 * p.x / width - 1.0) * w, (1.0 - 2.0 * p.y / height) * w, p.z * w, w};
+    for (double v : clip[i])
+      largest = std::max(largest, std::abs(v));
+  }
+  // A corner or a join's tip lies off the segment, up to a miter's length beyond the guard
+  // band: near the largest w its clip coordinates can pass the largest float. All three
+  // vertices are then scaled by one power of two, which moves no window point and changes no
+  // z/w, and no ratio of 1/w between them.
+  int scale = 0;
+  if (largest > 0x1p126) scale = 126 - std::ilogb(largest);
+  for (int i = 0; i < 3; ++i) {
+    positions.push_back({static_cast<float>(std::ldexp(clip[i][0], scale)),
+                         static_cast<float>(std::ldexp(clip[i][1], scale)),
+                         static_cast<float>(std::ldexp(clip[i][2], scale)),
+                         static_cast<float>(std::ldexp(clip[i][3], scale))});
+    colors.insert(colors.end(), points[i]->color.begin(), points[i]->color.end());
   }
 }
 
