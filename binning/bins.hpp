@@ -10,6 +10,7 @@
 // memory a bin set holds is therefore known (bytes()) and its user can keep it within a budget.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -29,6 +30,8 @@ class Bins {
   // Bytes held per binned triangle besides its references (its tile rectangle and reference).
   static constexpr uint64_t kBytesPerTriangle = sizeof(TileRect) + sizeof(uint32_t);
   static constexpr uint64_t kBytesPerReference = sizeof(uint32_t);
+  // The most references one bin set holds: place() lays its lists out with 32-bit starts.
+  static constexpr uint64_t kMaxReferences = UINT32_MAX;
 
   // Starts an empty bin set for a grid of `tiles_x` x `tile_count / tiles_x` tiles (allocated
   // capacity is kept).
@@ -123,5 +126,28 @@ class Bins {
   std::vector<uint32_t> lists_;
   uint64_t references_ = 0;
 };
+
+// How a bin set's room (bytes) splits between triangles (each `triangle_bytes`: its setup, its
+// record and its bin entry) and references, for `references_per_triangle` references a
+// triangle: as many triangles as the room holds at that rate, clamped to [min_triangles,
+// max_triangles], and the rest for references, at least one a tile and at most kMaxReferences.
+struct BinRoom {
+  uint64_t triangles;
+  uint64_t references;
+};
+inline BinRoom split_bin_room(uint64_t room, uint64_t triangle_bytes,
+                              double references_per_triangle, uint64_t min_triangles,
+                              uint64_t max_triangles, uint64_t tiles) {
+  const double per_triangle =
+      static_cast<double>(triangle_bytes) +
+      std::max(references_per_triangle, 1.0) * static_cast<double>(Bins::kBytesPerReference);
+  const uint64_t triangles =
+      std::clamp<uint64_t>(static_cast<uint64_t>(static_cast<double>(room) / per_triangle),
+                           min_triangles, max_triangles);
+  const uint64_t rest = room > triangles * triangle_bytes ? room - triangles * triangle_bytes : 0;
+  const uint64_t references =
+      std::min(std::max(rest / Bins::kBytesPerReference, tiles), Bins::kMaxReferences);
+  return {triangles, references};
+}
 
 }  // namespace tessera::binning
