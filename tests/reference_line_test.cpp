@@ -250,6 +250,39 @@ TEST(ReferenceLines, StippleCounterRunsOnAcrossAStripAndRestartsPerListSegment) 
   EXPECT_EQ(row_picture(draw(LineTopology::kList), 0, 32), "XXXXXXXX....XXXXXXXX........XXXX");
 }
 
+// A strip that runs 143,200 times across the guard band off screen (30,001 steps a time, over
+// 2^32 in all) before it comes on screen stipples as one whose off-screen part is 16 steps: the
+// counter is kept modulo the pattern's period (48 steps here), and does not wrap at 2^32 (which
+// shifted the pattern by 2^32 mod 48 = 16 steps).
+TEST(ReferenceLines, StippleOfAStripLongerThanTwoToTheThirtyTwoStepsKeepsItsPhase) {
+  const Viewport vp{64, 16};
+  auto draw = [&](uint32_t crossings, double first_x, Backend backend) {
+    Vertices strip(vp, {{first_x, -100.5}});
+    for (uint32_t i = 0; i < crossings; ++i)
+      strip.add(vp, {i % 2 == 0 ? 30001.5 : 0.5, -100.5});
+    strip.add(vp, {0.5, -100.5});
+    strip.add(vp, {0.5, 8.5});
+    strip.add(vp, {63.5, 8.5});
+    return touched(
+        64, 16,
+        [&](Renderer& r, Framebuffer& fb) {
+          LineState state;
+          state.topology = LineTopology::kStrip;
+          state.stipple = {0x00FF, 3};
+          r.draw_lines(fb, touch_pipeline(), state, strip.input());
+        },
+        1, backend);
+  };
+  for (Backend backend : {Backend::kReference, Backend::kFast}) {
+    SCOPED_TRACE(backend == Backend::kFast ? "fast" : "reference");
+    const PixelSet long_strip = draw(143200, 0.5, backend);
+    const PixelSet short_strip = draw(0, 16.5, backend);  // 143,200 x 30,001 = 16 (mod 48)
+    EXPECT_EQ(row_picture(long_strip, 8, 64), row_picture(short_strip, 8, 64));
+    EXPECT_EQ(long_strip, short_strip);
+    EXPECT_NE(short_strip, draw(0, 0.5, backend));  // the phase shows
+  }
+}
+
 // The pixels of a line in a 16x16 viewport equal those of the same window-space line in the
 // middle of a 48x48 one: clipping against the viewport never moves a visible pixel.
 TEST(ReferenceLines, LinesCrossingEveryViewportEdgeAreClippedWithoutMovingPixels) {

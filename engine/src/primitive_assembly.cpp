@@ -48,8 +48,12 @@ uint32_t major_steps(const WindowPoint& a, const WindowPoint& b, uint32_t bits) 
 }
 
 std::vector<WindowSegment> assemble_segments(const DrawInput& input, const PipelineState& pipeline,
-                                             LineTopology topology, uint32_t width,
+                                             const LineState& state, uint32_t width,
                                              uint32_t height) {
+  const LineTopology topology = state.topology;
+  // A strip's counter grows by up to the guard band's width a segment: kept modulo the
+  // pattern's period, it cannot wrap (a wrap at 2^32 would shift the pattern's phase).
+  const uint32_t period = 16 * state.stipple.factor;
   const std::vector<uint32_t> order = vertex_order(input);
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   if (topology == LineTopology::kList) {
@@ -85,7 +89,7 @@ std::vector<WindowSegment> assemble_segments(const DrawInput& input, const Pipel
       s.stipple_base = 0;
     } else {
       s.stipple_base = counter;
-      counter += major_steps(s.a, s.b, bits);
+      counter = static_cast<uint32_t>((uint64_t{counter} + major_steps(s.a, s.b, bits)) % period);
       if (previous_reaches_end && a_kept && !segments.empty()) segments.back().joins_next = true;
     }
     previous_reaches_end = b_kept;

@@ -30,8 +30,9 @@ std::vector<WindowPoint> assemble_points(const DrawInput& input, const PipelineS
 
 // The segments of a line draw, clipped, in window space, in drawing order. Zero-length
 // segments are kept (the rasterizers draw nothing for them); wholly clipped ones are dropped.
+// The stipple counter is kept modulo its period, 16 x the stipple's factor.
 std::vector<WindowSegment> assemble_segments(const DrawInput& input, const PipelineState& pipeline,
-                                             LineTopology topology, uint32_t width,
+                                             const LineState& state, uint32_t width,
                                              uint32_t height);
 
 // Steps along the major axis between the pixels of a and b: the stipple counter's advance.

@@ -68,7 +68,7 @@ void draw_lines(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                 const LineState& state, const DrawInput& input, const TriangleDraw& triangles,
                 const ThinLineDraw& thin_lines, Counters& counters) {
   const std::vector<WindowSegment> segments =
-      assemble_segments(input, pipeline, state.topology, fb.desc.width, fb.desc.height);
+      assemble_segments(input, pipeline, state, fb.desc.width, fb.desc.height);
   const size_t n = vertex_count(input);
   counters.lines_submitted += state.topology == LineTopology::kList    ? n / 2
                               : n < 2                                  ? 0
