@@ -378,6 +378,19 @@ TEST(MeshLoading, PlyHeaderWithoutEndHeaderIsRejectedWhateverElseItHolds) {
   }
 }
 
+// An element without properties takes no data, so its count, however large, costs nothing to
+// check: the scan of an ASCII body reads no token for it rather than counting to 2^64.
+TEST(MeshLoading, PlyElementsWithoutPropertiesTakeNoDataWhateverTheirCount) {
+  TempDir dir;
+  write_file(dir / "empty.ply", std::string(kPlyHeader) + "element junk 18446744073709551615\n" +
+                                    "element face 1\nproperty list uchar int vertex_indices\n" +
+                                    "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const test::Watchdog watchdog(60);
+  const Mesh mesh = load_mesh(dir / "empty.ply");
+  EXPECT_EQ(mesh.triangle_count(), 1u);
+  EXPECT_EQ(mesh.positions.size(), 3u);
+}
+
 // A binary PLY quad: 4 float vertices, one face of 4 int indices with a uchar length, in the
 // given byte order.
 std::string binary_ply_quad(bool big_endian) {

@@ -308,6 +308,7 @@ void check_ply_counts(const std::filesystem::path& path) {
       return !token.empty();
     };
     for (const PlyElement& e : elements) {
+      if (e.properties.empty()) continue;  // no tokens, whatever its count
       for (uint64_t i = 0; i < e.count; ++i) {
         for (const PlyProperty& p : e.properties) {
           if (!next_token()) truncated(e, i);
