@@ -209,6 +209,7 @@ int run(const Options& o, const CLI::App& app) {
   check_output_directory("--depth", o.depth_output);
   check_finite("--point-size", {o.point_size});
   check_finite("--line-width", {o.line_width});
+  check_finite("--bin-budget", {static_cast<float>(o.bin_budget_mib)});
   if (o.wireframe && o.points) bad_argument("--wireframe/--points: choose one");
   Job job;
   job.mode = o.wireframe ? Mode::kWireframe : o.points ? Mode::kPoints : Mode::kTriangles;

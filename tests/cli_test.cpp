@@ -263,6 +263,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadRun{"PointSizeZero", "--points --point-size 0", "--point-size"},
                       BadRun{"LineAlgorithmUnknown", "--line-algorithm wu", "--line-algorithm"},
                       BadRun{"BlockSizeTwelve", "--block-size 12", "--block-size"},
+                      BadRun{"BinBudgetNaN", "--bin-budget nan", "--bin-budget"},
                       BadRun{"UnwritableDepthPath",
                              "--width 8 --height 8 --depth {dir}/no/such/depth.exr", "depth.exr"}),
     [](const ::testing::TestParamInfo<BadRun>& p) { return std::string(p.param.name); });
