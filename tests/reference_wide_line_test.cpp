@@ -89,5 +89,37 @@ TEST(ReferenceWideLines, StippleCutsWideLinesIntoDashes) {
   EXPECT_EQ(dashes, rect(0, 6, 7, 8) | rect(16, 6, 23, 8));
 }
 
+// A stippled wide line across the whole guard band (64,000 steps, 32,000 one-pixel dashes)
+// draws the dashes that reach the viewport and no others: the same pixels as the part from 16
+// steps before the viewport, whose steps have the same parity, and a few triangles, not 64,000.
+TEST(ReferenceWideLines, StippledWideLinesDrawOnlyTheDashesThatReachTheViewport) {
+  LineState s;
+  s.width = 3;
+  s.stipple = {0x5555, 1};  // every even step
+  for (Backend backend : {Backend::kReference, Backend::kFast}) {
+    SCOPED_TRACE(backend == Backend::kFast ? "fast" : "reference");
+    const Viewport vp{16, 16};
+    Counters counters;
+    auto draw = [&](double x0, double x1) {
+      return touched(
+          16, 16,
+          [&](Renderer& r, Framebuffer& fb) {
+            const Vertices v(vp, {{x0, 8}, {x1, 8}});
+            r.draw_lines(fb, touch_pipeline(), s, v.input());
+            counters = r.counters();
+          },
+          1, backend);
+    };
+    const PixelSet across = draw(-32000, 32000);
+    EXPECT_GT(counters.triangles_submitted, 0u);
+    EXPECT_LT(counters.triangles_submitted, 40u);
+    EXPECT_EQ(across, draw(-16, 32));
+    PixelSet expected;
+    for (int x = 0; x < 16; x += 2)
+      expected.insert({{x, 6}, {x, 7}, {x, 8}});
+    EXPECT_EQ(across, expected);
+  }
+}
+
 }  // namespace
 }  // namespace tessera::test

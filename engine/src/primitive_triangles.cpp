@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/src/line_clip.hpp"
 #include "engine/src/reference/reference_lines.hpp"
 
 namespace tessera {
@@ -109,17 +110,32 @@ TriangleList wide_lines(std::span<const WindowSegment> segments, const LineState
     if (state.stipple.pattern == 0xFFFF) {
       rectangle(0.0, 1.0);
     } else {
-      // Fragment k of the dash pattern covers major-axis distance [k, k + 1) from a.
+      // Fragment k of the dash pattern covers major-axis distance [k, k + 1) from a. Only the
+      // dashes that reach the viewport grown by the half width can cover a pixel: the part
+      // [t0, t1] of the segment inside it, from the start of the dash at its first step on
+      // (a segment across the guard band has up to 65,536 steps, and as many dashes).
       const double major = std::max(std::abs(dx), std::abs(dy));
       const auto steps = static_cast<uint32_t>(std::ceil(major));
-      uint32_t k = 0;
-      while (k < steps) {
-        if (!reference::stipple_on(state.stipple, s.stipple_base + k)) {
+      const double margin = half + 2.0;
+      double t0 = 0.0, t1 = 1.0;
+      const bool reaches = cohen_sutherland(s.a.x, s.a.y, s.b.x, s.b.y, -margin, -margin,
+                                            width + margin, height + margin, t0, t1);
+      const auto on = [&](uint32_t k) {
+        return reference::stipple_on(state.stipple, s.stipple_base + k);
+      };
+      const double limit = static_cast<double>(steps);
+      uint32_t k = static_cast<uint32_t>(std::clamp(std::floor(t0 * major) - 1.0, 0.0, limit));
+      const uint32_t last =
+          reaches ? static_cast<uint32_t>(std::clamp(std::ceil(t1 * major) + 1.0, 0.0, limit)) : 0;
+      while (k > 0 && on(k) && on(k - 1))
+        --k;
+      while (k < last) {
+        if (!on(k)) {
           ++k;
           continue;
         }
         uint32_t end = k + 1;
-        while (end < steps && reference::stipple_on(state.stipple, s.stipple_base + end))
+        while (end < steps && on(end))
           ++end;
         rectangle(k / major, std::min(1.0, end / major));
         k = end;
