@@ -268,6 +268,38 @@ INSTANTIATE_TEST_SUITE_P(
                              "--width 8 --height 8 --depth {dir}/no/such/depth.exr", "depth.exr"}),
     [](const ::testing::TestParamInfo<BadRun>& p) { return std::string(p.param.name); });
 
+// A draw whose bins the budget allows but memory does not (40,000 full-screen triangles over
+// 16,384 tiles of 32 pixels: 2.6 GB of references under a 65536 MiB budget, in a process
+// limited to 1.5 GB of address space) ends with the engine's out-of-memory error, which names
+// the budget, not with std::bad_alloc. (The sanitizers reserve more address space than that.)
+TEST(Cli, ADrawPastTheMemoryThereIsIsAnOutOfMemoryErrorNamingTheBudget) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer needs more address space than the limit";
+#else
+  if (std::system("prlimit --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "no prlimit";
+  TempDir dir;
+  Capture c;
+  c.width = 4096;
+  c.height = 4096;
+  for (int i = 0; i < 40000; ++i) {
+    c.positions.insert(c.positions.end(), {{-1, -1, 0, 1}, {1, -1, 0, 1}, {1, 1, 0, 1}});
+    for (int v = 0; v < 3; ++v)
+      c.colors.insert(c.colors.end(), {1, 0, 0, 1});
+  }
+  save_capture(dir / "full.tri", c);
+  const std::string command = "prlimit --as=1500000000 " + quoted(TESSERA_RENDER_EXE) + " " +
+                              quoted(dir / "full.tri") +
+                              " -s 1 --threads 1 --bin-tile 32 --bin-budget 65536 -o " +
+                              quoted(dir / "full.png") + " 2>" + quoted(dir / "err.txt");
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(status != -1 && WIFEXITED(status)) << "killed by a signal";
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_NE(err.find("out of memory (bin memory budget 65536 MiB)"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "full.png"));
+#endif
+}
+
 // Pixels of an image that differ from the default clear colour (0.08, 0.09, 0.11).
 int drawn_pixels(const Image& image) {
   int n = 0;

@@ -1,6 +1,7 @@
 // The Renderer: validates draws, owns the task arena, and hands draws to the chosen backend.
 #include "tessera/renderer.hpp"
 
+#include <new>
 #include <optional>
 #include <string>
 
@@ -23,6 +24,21 @@ namespace {
 
 // Smallest accepted bin memory budget: room for a few hundred triangles and their references.
 constexpr uint64_t kMinBinMemoryBudget = uint64_t{64} << 10;
+
+// A draw that cannot allocate what it needs (bins under a budget larger than the memory there
+// is, or the triangles a line, point or polygon draw becomes) ends with Error(kOutOfMemory)
+// rather than std::bad_alloc. The framebuffer then holds the passes drawn before.
+template <typename Body>
+void out_of_memory_as_error(const char* call, uint64_t budget, const Body& body) {
+  try {
+    body();
+  } catch (const std::bad_alloc&) {
+    throw Error(ErrorCode::kOutOfMemory,
+                std::string(call) + ": out of memory (bin memory budget " +
+                    std::to_string(budget >> 20) +
+                    " MiB); a smaller budget draws in more passes with less memory");
+  }
+}
 
 RendererOptions checked(const RendererOptions& o) {
   if (o.threads > 1024) {
@@ -89,44 +105,46 @@ void Renderer::reset_counters() noexcept {
 }
 
 void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input) {
-  const bool cull_non_finite = impl_->options.non_finite == NonFiniteVertices::kCull;
-  // The fast engine's setup checks the draws it can (triangle soups with at most four
-  // attributes) for NaN and infinity as it reads them, in cache, rather than in a pass of their
-  // own over the arrays first, and throws the same error before drawing anything. The others
-  // are checked here: an indexed draw's vertices must all be finite, also those no index uses.
-  const bool check_in_setup = !cull_non_finite && impl_->options.backend == Backend::kFast &&
-                              fast::FastRasterizer::checks_finite_values(input);
-  validate_draw(target, pipeline, input, !cull_non_finite && !check_in_setup, &impl_->arena);
-  // Pending clears are left to the fast engine's tiles (draw_triangles writes them for the
-  // reference).
-  detail::FramebufferStorage& storage = detail::FramebufferAccess::deferred_storage(target);
-  if (!cull_non_finite) {
-    draw_triangles(storage, pipeline, input, check_in_setup);
-    return;
-  }
-  const std::vector<bool> finite = finite_vertices(input);
-  if (finite.empty()) {
-    draw_triangles(storage, pipeline, input);
-    return;
-  }
-  // The triangles whose three vertices are finite, as an index list into the caller's data.
-  const size_t triangles =
-      (input.indices.empty() ? input.positions.size() : input.indices.size()) / 3;
-  std::vector<uint32_t> kept;
-  kept.reserve(triangles * 3);
-  for (size_t t = 0; t < triangles; ++t) {
-    uint32_t v[3];
-    for (size_t k = 0; k < 3; ++k)
-      v[k] = input.indices.empty() ? static_cast<uint32_t>(3 * t + k) : input.indices[3 * t + k];
-    if (finite[v[0]] && finite[v[1]] && finite[v[2]]) {
-      kept.insert(kept.end(), v, v + 3);
-    } else {
-      ++impl_->counters.triangles_invalid;
+  out_of_memory_as_error("draw", impl_->options.bin_memory_budget, [&] {
+    const bool cull_non_finite = impl_->options.non_finite == NonFiniteVertices::kCull;
+    // The fast engine's setup checks the draws it can (triangle soups with at most four
+    // attributes) for NaN and infinity as it reads them, in cache, rather than in a pass of their
+    // own over the arrays first, and throws the same error before drawing anything. The others
+    // are checked here: an indexed draw's vertices must all be finite, also those no index uses.
+    const bool check_in_setup = !cull_non_finite && impl_->options.backend == Backend::kFast &&
+                                fast::FastRasterizer::checks_finite_values(input);
+    validate_draw(target, pipeline, input, !cull_non_finite && !check_in_setup, &impl_->arena);
+    // Pending clears are left to the fast engine's tiles (draw_triangles writes them for the
+    // reference).
+    detail::FramebufferStorage& storage = detail::FramebufferAccess::deferred_storage(target);
+    if (!cull_non_finite) {
+      draw_triangles(storage, pipeline, input, check_in_setup);
+      return;
     }
-  }
-  DrawInput valid = input;
-  valid.indices = kept;
-  if (!kept.empty()) draw_triangles(storage, pipeline, valid);
+    const std::vector<bool> finite = finite_vertices(input);
+    if (finite.empty()) {
+      draw_triangles(storage, pipeline, input);
+      return;
+    }
+    // The triangles whose three vertices are finite, as an index list into the caller's data.
+    const size_t triangles =
+        (input.indices.empty() ? input.positions.size() : input.indices.size()) / 3;
+    std::vector<uint32_t> kept;
+    kept.reserve(triangles * 3);
+    for (size_t t = 0; t < triangles; ++t) {
+      uint32_t v[3];
+      for (size_t k = 0; k < 3; ++k)
+        v[k] = input.indices.empty() ? static_cast<uint32_t>(3 * t + k) : input.indices[3 * t + k];
+      if (finite[v[0]] && finite[v[1]] && finite[v[2]]) {
+        kept.insert(kept.end(), v, v + 3);
+      } else {
+        ++impl_->counters.triangles_invalid;
+      }
+    }
+    DrawInput valid = input;
+    valid.indices = kept;
+    if (!kept.empty()) draw_triangles(storage, pipeline, valid);
+  });
 }
 
 void Renderer::draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,
@@ -143,56 +161,62 @@ void Renderer::draw_triangles(detail::FramebufferStorage& storage, const Pipelin
 
 void Renderer::draw_points(Framebuffer& target, const PipelineState& pipeline,
                            const PointState& state, const DrawInput& input) {
-  validate_points(target, pipeline, state, input);
-  detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
-  tessera::draw_points(
-      storage, pipeline, state, input,
-      [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
-      [&](std::span<const WindowPoint> points, float size) {
-        if (impl_->options.backend == Backend::kReference) {
-          draw_reference_round_points(storage, pipeline, points, size, impl_->counters);
-        } else {
-          fast::draw_round_points(impl_->arena, storage, pipeline, points, size, impl_->counters);
-        }
-      },
-      impl_->counters);
+  out_of_memory_as_error("draw_points", impl_->options.bin_memory_budget, [&] {
+    validate_points(target, pipeline, state, input);
+    detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
+    tessera::draw_points(
+        storage, pipeline, state, input,
+        [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+        [&](std::span<const WindowPoint> points, float size) {
+          if (impl_->options.backend == Backend::kReference) {
+            draw_reference_round_points(storage, pipeline, points, size, impl_->counters);
+          } else {
+            fast::draw_round_points(impl_->arena, storage, pipeline, points, size, impl_->counters);
+          }
+        },
+        impl_->counters);
+  });
 }
 
 void Renderer::draw_lines(Framebuffer& target, const PipelineState& pipeline,
                           const LineState& state, const DrawInput& input) {
-  validate_lines(target, pipeline, state, input);
-  detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
-  tessera::draw_lines(
-      storage, pipeline, state, input,
-      [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
-      [&](const LineState& s, std::span<const WindowSegment> segments) {
-        if (impl_->options.backend == Backend::kReference) {
-          draw_reference_thin_lines(storage, pipeline, s, segments, impl_->counters);
-        } else {
-          fast::draw_thin_lines(impl_->arena, impl_->fast.simd_target(), impl_->lines, storage,
-                                pipeline, s, segments, impl_->counters);
-        }
-      },
-      impl_->counters);
+  out_of_memory_as_error("draw_lines", impl_->options.bin_memory_budget, [&] {
+    validate_lines(target, pipeline, state, input);
+    detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
+    tessera::draw_lines(
+        storage, pipeline, state, input,
+        [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+        [&](const LineState& s, std::span<const WindowSegment> segments) {
+          if (impl_->options.backend == Backend::kReference) {
+            draw_reference_thin_lines(storage, pipeline, s, segments, impl_->counters);
+          } else {
+            fast::draw_thin_lines(impl_->arena, impl_->fast.simd_target(), impl_->lines, storage,
+                                  pipeline, s, segments, impl_->counters);
+          }
+        },
+        impl_->counters);
+  });
 }
 
 void Renderer::draw_polygon(Framebuffer& target, const PipelineState& pipeline,
                             const PolygonState& state, const DrawInput& input,
                             std::span<const uint32_t> contour_sizes) {
-  validate_polygon(target, pipeline, state, input, contour_sizes);
-  detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
-  tessera::draw_polygon(
-      storage, pipeline, state, input, contour_sizes,
-      [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
-      [&](const std::vector<std::vector<WindowPoint>>& contours, FillRule rule) {
-        if (impl_->options.backend == Backend::kReference) {
-          draw_reference_scanline_polygon(storage, pipeline, contours, rule, impl_->counters);
-        } else {
-          fast::draw_scanline_polygon(impl_->arena, storage, pipeline, contours, rule,
-                                      impl_->counters);
-        }
-      },
-      impl_->counters);
+  out_of_memory_as_error("draw_polygon", impl_->options.bin_memory_budget, [&] {
+    validate_polygon(target, pipeline, state, input, contour_sizes);
+    detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
+    tessera::draw_polygon(
+        storage, pipeline, state, input, contour_sizes,
+        [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+        [&](const std::vector<std::vector<WindowPoint>>& contours, FillRule rule) {
+          if (impl_->options.backend == Backend::kReference) {
+            draw_reference_scanline_polygon(storage, pipeline, contours, rule, impl_->counters);
+          } else {
+            fast::draw_scanline_polygon(impl_->arena, storage, pipeline, contours, rule,
+                                        impl_->counters);
+          }
+        },
+        impl_->counters);
+  });
 }
 
 }  // namespace tessera

@@ -142,7 +142,9 @@ class Renderer {
   const char* simd_target() const noexcept;
 
   // Draws a triangle list. All input is validated before anything is drawn: on
-  // Error(kInvalidArgument / kInvalidInput) the framebuffer is left as it was.
+  // Error(kInvalidArgument / kInvalidInput) the framebuffer is left as it was. Every draw call
+  // that cannot get the memory it needs (a bin memory budget larger than the memory there is)
+  // ends with Error(kOutOfMemory); the framebuffer then holds the passes drawn before.
   void draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input);
 
   // Draws one point per vertex (per index when there are indices), rules in primitives.hpp.
