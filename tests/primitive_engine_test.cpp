@@ -298,6 +298,49 @@ TEST(PrimitiveEngine, AntialiasedLinesMatchTheReference) {
       1, ColorFormat::kRGBA32F);
 }
 
+// Long antialiased lines at every angle over a target of 8 x 6 line tiles, where a diagonal
+// line's tiles are a band through its bounding box: the fast engine visits only the tiles
+// near each line and draws the reference's bytes.
+TEST(PrimitiveEngine, LongAntialiasedLinesOverManyTilesMatchTheReference) {
+  constexpr uint32_t kW = 1000, kH = 760;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Float4> positions;
+  std::vector<float> colors;
+  for (int i = 0; i < 600; ++i) {
+    const float x = u(rng) * 1200.0f - 100.0f, y = u(rng) * 960.0f - 100.0f;
+    positions.push_back({2.0f * x / kW - 1.0f, 1.0f - 2.0f * y / kH, depth_of(i / 2), 1.0f});
+    for (int c = 0; c < 4; ++c)
+      colors.push_back(u(rng));
+  }
+  const DrawInput input{positions, colors, 4, {}};
+  for (float width : {1.0f, 4.5f}) {
+    SCOPED_TRACE(testing::Message() << "width " << width);
+    LineState state;
+    state.antialiased = true;
+    state.width = width;
+    auto draw = [&](Backend backend, Config config) {
+      RendererOptions options;
+      options.backend = backend;
+      options.threads = config.threads;
+      options.simd = config.target;
+      Renderer renderer(options);
+      Framebuffer fb({kW, kH, 1, ColorFormat::kRGBA32F});
+      fb.clear_color({0.1f, 0.2f, 0.3f, 1.0f});
+      renderer.draw_lines(fb, always(), state, input);
+      return std::make_pair(fb.read_rgba32f(), fb.read_depth());
+    };
+    const auto ref = draw(Backend::kReference, {SimdTarget::kAuto, 1});
+    for (const Config& config : all_configs()) {
+      SCOPED_TRACE(testing::Message()
+                   << static_cast<int>(config.target) << ", " << config.threads << " threads");
+      const auto fast = draw(Backend::kFast, config);
+      EXPECT_TRUE(fast.first == ref.first);
+      EXPECT_TRUE(fast.second == ref.second);
+    }
+  }
+}
+
 // Antialiased lines into RGBA8 (blended over what earlier lines wrote, the bytes rounded as the
 // reference rounds them) at one and four samples, without and with a depth test against the
 // lines' own depth, at two widths.

@@ -688,7 +688,7 @@ void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, LineScratch& s
         const uint32_t tx1 = static_cast<uint32_t>(b.x1) >> kLineTileLog2;
         const uint32_t ty0 = static_cast<uint32_t>(b.y0) >> kLineTileLog2;
         const uint32_t ty1 = static_cast<uint32_t>(b.y1) >> kLineTileLog2;
-        if (tx0 == tx1 || ty0 == ty1 || state.antialiased) {
+        if (tx0 == tx1 || ty0 == ty1) {
           for (uint32_t ty = ty0; ty <= ty1; ++ty) {
             for (uint32_t tx = tx0; tx <= tx1; ++tx)
               chunk.bins.add(ty * bin_grid.tiles_x + tx, index);
