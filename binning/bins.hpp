@@ -129,8 +129,9 @@ class Bins {
 
 // How a bin set's room (bytes) splits between triangles (each `triangle_bytes`: its setup, its
 // record and its bin entry) and references, for `references_per_triangle` references a
-// triangle: as many triangles as the room holds at that rate, clamped to [min_triangles,
-// max_triangles], and the rest for references, at least one a tile and at most kMaxReferences.
+// triangle: as many triangles as the room (and kMaxReferences) holds at that rate, clamped to
+// [min_triangles, max_triangles], and the rest for references, at least one a tile and at most
+// kMaxReferences.
 struct BinRoom {
   uint64_t triangles;
   uint64_t references;
@@ -138,12 +139,14 @@ struct BinRoom {
 inline BinRoom split_bin_room(uint64_t room, uint64_t triangle_bytes,
                               double references_per_triangle, uint64_t min_triangles,
                               uint64_t max_triangles, uint64_t tiles) {
-  const double per_triangle =
-      static_cast<double>(triangle_bytes) +
-      std::max(references_per_triangle, 1.0) * static_cast<double>(Bins::kBytesPerReference);
+  const double references_each = std::max(references_per_triangle, 1.0);
+  const double per_triangle = static_cast<double>(triangle_bytes) +
+                              references_each * static_cast<double>(Bins::kBytesPerReference);
+  // No more triangles than kMaxReferences holds at that rate either.
+  const double fit = std::min(static_cast<double>(room) / per_triangle,
+                              static_cast<double>(Bins::kMaxReferences) / references_each);
   const uint64_t triangles =
-      std::clamp<uint64_t>(static_cast<uint64_t>(static_cast<double>(room) / per_triangle),
-                           min_triangles, max_triangles);
+      std::clamp<uint64_t>(static_cast<uint64_t>(fit), min_triangles, max_triangles);
   const uint64_t rest = room > triangles * triangle_bytes ? room - triangles * triangle_bytes : 0;
   const uint64_t references =
       std::min(std::max(rest / Bins::kBytesPerReference, tiles), Bins::kMaxReferences);

@@ -274,6 +274,13 @@ INSTANTIATE_TEST_SUITE_P(
 // the budget, not with std::bad_alloc. (The sanitizers reserve more address space than that.)
 TEST(Cli, ADrawPastTheMemoryThereIsIsAnOutOfMemoryErrorNamingTheBudget) {
 #if defined(__SANITIZE_ADDRESS__)
+#define TESSERA_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TESSERA_TEST_ASAN 1
+#endif
+#endif
+#ifdef TESSERA_TEST_ASAN
   GTEST_SKIP() << "AddressSanitizer needs more address space than the limit";
 #else
   if (std::system("prlimit --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "no prlimit";

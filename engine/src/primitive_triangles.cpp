@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "engine/src/line_clip.hpp"
@@ -25,12 +26,13 @@ void TriangleList::add_window(const WindowPoint& a, const WindowPoint& b, const 
     for (double v : clip[i])
       largest = std::max(largest, std::abs(v));
   }
-  // A corner or a join's tip lies off the segment, up to a miter's length beyond the guard
-  // band: near the largest w its clip coordinates can pass the largest float. All three
-  // vertices are then scaled by one power of two, which moves no window point and changes no
-  // z/w, and no ratio of 1/w between them.
+  // A wide line's corner or a join's tip lies off the segment, up to a miter's length beyond
+  // the guard band: near the largest w its clip coordinates can pass the largest float. All
+  // three vertices are then scaled down by one power of two, which moves no window point and
+  // changes no z/w, and no ratio of 1/w between them. (Only the w >= kMinClipW plane is not
+  // scale-free: a vertex of the same triangle within a factor 2 or 4 of it would be cut.)
   int scale = 0;
-  if (largest > 0x1p126) scale = 126 - std::ilogb(largest);
+  if (largest > std::numeric_limits<float>::max()) scale = 126 - std::ilogb(largest);
   for (int i = 0; i < 3; ++i) {
     positions.push_back({static_cast<float>(std::ldexp(clip[i][0], scale)),
                          static_cast<float>(std::ldexp(clip[i][1], scale)),

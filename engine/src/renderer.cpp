@@ -29,14 +29,19 @@ constexpr uint64_t kMinBinMemoryBudget = uint64_t{64} << 10;
 // is, or the triangles a line, point or polygon draw becomes) ends with Error(kOutOfMemory)
 // rather than std::bad_alloc. The framebuffer then holds the passes drawn before.
 template <typename Body>
-void out_of_memory_as_error(const char* call, uint64_t budget, const Body& body) {
+void out_of_memory_as_error(const char* call, const RendererOptions& options, const Body& body) {
   try {
     body();
   } catch (const std::bad_alloc&) {
-    throw Error(ErrorCode::kOutOfMemory,
-                std::string(call) + ": out of memory (bin memory budget " +
-                    std::to_string(budget >> 20) +
-                    " MiB); a smaller budget draws in more passes with less memory");
+    std::string message = std::string(call) + ": out of memory";
+    if (options.backend == Backend::kFast) {
+      const uint64_t budget = options.bin_memory_budget;
+      message += " (bin memory budget " +
+                 (budget % (uint64_t{1} << 20) == 0 ? std::to_string(budget >> 20) + " MiB"
+                                                    : std::to_string(budget) + " bytes") +
+                 "); a smaller budget draws in more passes with less memory";
+    }
+    throw Error(ErrorCode::kOutOfMemory, message);
   }
 }
 
@@ -105,7 +110,7 @@ void Renderer::reset_counters() noexcept {
 }
 
 void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input) {
-  out_of_memory_as_error("draw", impl_->options.bin_memory_budget, [&] {
+  out_of_memory_as_error("draw", impl_->options, [&] {
     const bool cull_non_finite = impl_->options.non_finite == NonFiniteVertices::kCull;
     // The fast engine's setup checks the draws it can (triangle soups with at most four
     // attributes) for NaN and infinity as it reads them, in cache, rather than in a pass of their
@@ -161,7 +166,7 @@ void Renderer::draw_triangles(detail::FramebufferStorage& storage, const Pipelin
 
 void Renderer::draw_points(Framebuffer& target, const PipelineState& pipeline,
                            const PointState& state, const DrawInput& input) {
-  out_of_memory_as_error("draw_points", impl_->options.bin_memory_budget, [&] {
+  out_of_memory_as_error("draw_points", impl_->options, [&] {
     validate_points(target, pipeline, state, input);
     detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
     tessera::draw_points(
@@ -180,7 +185,7 @@ void Renderer::draw_points(Framebuffer& target, const PipelineState& pipeline,
 
 void Renderer::draw_lines(Framebuffer& target, const PipelineState& pipeline,
                           const LineState& state, const DrawInput& input) {
-  out_of_memory_as_error("draw_lines", impl_->options.bin_memory_budget, [&] {
+  out_of_memory_as_error("draw_lines", impl_->options, [&] {
     validate_lines(target, pipeline, state, input);
     detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
     tessera::draw_lines(
@@ -201,7 +206,7 @@ void Renderer::draw_lines(Framebuffer& target, const PipelineState& pipeline,
 void Renderer::draw_polygon(Framebuffer& target, const PipelineState& pipeline,
                             const PolygonState& state, const DrawInput& input,
                             std::span<const uint32_t> contour_sizes) {
-  out_of_memory_as_error("draw_polygon", impl_->options.bin_memory_budget, [&] {
+  out_of_memory_as_error("draw_polygon", impl_->options, [&] {
     validate_polygon(target, pipeline, state, input, contour_sizes);
     detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
     tessera::draw_polygon(
