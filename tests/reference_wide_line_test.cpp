@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "engine/src/primitive_triangles.hpp"
 #include "tests/primitive_test_support.hpp"
 
 namespace tessera::test {
@@ -119,6 +120,45 @@ TEST(ReferenceWideLines, StippledWideLinesDrawOnlyTheDashesThatReachTheViewport)
       expected.insert({{x, 6}, {x, 7}, {x, 8}});
     EXPECT_EQ(across, expected);
   }
+}
+
+// A line list whose dashes make far more triangles than one chunk reaches the triangle pipeline
+// in lists of about kWideLineChunk triangles, in order, each segment's dashes whole: 3,000
+// segments across a 64-pixel viewport, each cut into 32 one-step dashes (64 triangles).
+TEST(ReferenceWideLines, ManyStippledWideLinesReachTheTrianglesInBoundedLists) {
+  LineState s;
+  s.width = 3;
+  s.stipple = {0x5555, 1};
+  std::vector<WindowSegment> segments(3000);
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const double y = 8.5 + static_cast<double>(i % 48);
+    segments[i].a.x = 0.0;
+    segments[i].b.x = 64.0;
+    segments[i].a.y = segments[i].b.y = y;
+    segments[i].a.color[0] = segments[i].b.color[0] = static_cast<float>(i) / 4096.0f;
+  }
+  constexpr size_t kPerSegment = 64;
+  std::vector<size_t> sizes;
+  std::vector<float> first_red;  // the first vertex's red of each list: whose segment it is
+  wide_lines(segments, s, 64, 64, [&](const TriangleList& list) {
+    ASSERT_EQ(list.positions.size() % 3, 0u);
+    ASSERT_EQ(list.colors.size(), 4 * list.positions.size());
+    sizes.push_back(list.positions.size() / 3);
+    first_red.push_back(list.colors[0]);
+  });
+  size_t total = 0;
+  for (size_t k = 0; k < sizes.size(); ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ(sizes[k] % kPerSegment, 0u);  // no segment's dashes split
+    EXPECT_LE(sizes[k], kWideLineChunk + kPerSegment);
+    if (k + 1 < sizes.size()) {
+      EXPECT_GE(sizes[k], kWideLineChunk);
+    }
+    EXPECT_EQ(first_red[k], static_cast<float>(total / kPerSegment) / 4096.0f);  // in order
+    total += sizes[k];
+  }
+  EXPECT_EQ(total, segments.size() * kPerSegment);
+  EXPECT_EQ(sizes.size(), (segments.size() * kPerSegment + kWideLineChunk - 1) / kWideLineChunk);
 }
 
 }  // namespace

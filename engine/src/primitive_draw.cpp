@@ -75,7 +75,8 @@ void draw_lines(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                               : state.topology == LineTopology::kStrip ? n - 1
                                                                        : (n > 2 ? n : 1);
   if (state.width > 1.0f && !state.antialiased) {
-    draw_list(wide_lines(segments, state, fb.desc.width, fb.desc.height), pipeline, triangles);
+    wide_lines(segments, state, fb.desc.width, fb.desc.height,
+               [&](const TriangleList& list) { draw_list(list, pipeline, triangles); });
   } else {
     thin_lines(state, segments);
   }

@@ -92,11 +92,16 @@ TriangleList square_points(std::span<const WindowPoint> points, float size, uint
   return list;
 }
 
-TriangleList wide_lines(std::span<const WindowSegment> segments, const LineState& state,
-                        uint32_t width, uint32_t height) {
+void wide_lines(std::span<const WindowSegment> segments, const LineState& state, uint32_t width,
+                uint32_t height, const TriangleSink& sink) {
   TriangleList list;
   const double half = 0.5 * state.width;
   for (size_t i = 0; i < segments.size(); ++i) {
+    if (list.positions.size() >= 3 * kWideLineChunk) {
+      sink(list);
+      list.positions.clear();
+      list.colors.clear();
+    }
     const WindowSegment& s = segments[i];
     const double dx = s.b.x - s.a.x, dy = s.b.y - s.a.y;
     const double length = std::sqrt(dx * dx + dy * dy);
@@ -189,7 +194,7 @@ TriangleList wide_lines(std::span<const WindowSegment> segments, const LineState
         break;
     }
   }
-  return list;
+  if (!list.positions.empty()) sink(list);
 }
 
 }  // namespace tessera

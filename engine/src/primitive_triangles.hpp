@@ -4,7 +4,9 @@
 // fill rule, MSAA, depth and perspective-correct colour exactly as they do any triangle.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -32,8 +34,13 @@ PipelineState triangle_pipeline(const PipelineState& pipeline);
 TriangleList square_points(std::span<const WindowPoint> points, float size, uint32_t width,
                            uint32_t height);
 
-// Wide lines: one rectangle per stipple dash, plus the joins of connected segments.
-TriangleList wide_lines(std::span<const WindowSegment> segments, const LineState& state,
-                        uint32_t width, uint32_t height);
+// Wide lines: one rectangle per stipple dash, plus the joins of connected segments, handed to
+// `sink` in submission order as lists of about kWideLineChunk triangles: a segment's dashes and
+// join are never split, and a list is handed on once it holds kWideLineChunk or more, so a
+// line draw's triangles take memory bounded by the chunk and the viewport, not by the draw.
+inline constexpr size_t kWideLineChunk = size_t{1} << 16;
+using TriangleSink = std::function<void(const TriangleList&)>;
+void wide_lines(std::span<const WindowSegment> segments, const LineState& state, uint32_t width,
+                uint32_t height, const TriangleSink& sink);
 
 }  // namespace tessera
