@@ -25,23 +25,27 @@ namespace {
 // Smallest accepted bin memory budget: room for a few hundred triangles and their references.
 constexpr uint64_t kMinBinMemoryBudget = uint64_t{64} << 10;
 
-// A draw that cannot allocate what it needs (bins under a budget larger than the memory there
-// is, or the triangles a line, point or polygon draw becomes) ends with Error(kOutOfMemory)
-// rather than std::bad_alloc. The framebuffer then holds the passes drawn before.
+// A draw that cannot allocate what it needs ends with Error(kOutOfMemory) rather than
+// std::bad_alloc. Only the fast engine's setup and binning is bounded by the bin budget
+// (fast::BinMemoryError): that message names the budget, and says a smaller one would draw in
+// more passes unless it is the minimum already. Anything else (a reference draw, the triangles
+// a line, point or polygon draw becomes, a scanline polygon's spans) is reported as such.
 template <typename Body>
 void out_of_memory_as_error(const char* call, const RendererOptions& options, const Body& body) {
   try {
     body();
-  } catch (const std::bad_alloc&) {
-    std::string message = std::string(call) + ": out of memory";
-    if (options.backend == Backend::kFast) {
-      const uint64_t budget = options.bin_memory_budget;
-      message += " (bin memory budget " +
-                 (budget % (uint64_t{1} << 20) == 0 ? std::to_string(budget >> 20) + " MiB"
-                                                    : std::to_string(budget) + " bytes") +
-                 "); a smaller budget draws in more passes with less memory";
+  } catch (const fast::BinMemoryError&) {
+    const uint64_t budget = options.bin_memory_budget;
+    std::string message = std::string(call) + ": out of memory for the bins (bin memory budget " +
+                          (budget % (uint64_t{1} << 20) == 0 ? std::to_string(budget >> 20) + " MiB"
+                                                             : std::to_string(budget) + " bytes") +
+                          ")";
+    if (budget > kMinBinMemoryBudget) {
+      message += "; a smaller budget draws in more passes with less memory";
     }
     throw Error(ErrorCode::kOutOfMemory, message);
+  } catch (const std::bad_alloc&) {
+    throw Error(ErrorCode::kOutOfMemory, std::string(call) + ": out of memory");
   }
 }
 

@@ -144,11 +144,16 @@ class Renderer {
   // Draws a triangle list. All input is validated before anything is drawn: on
   // Error(kInvalidArgument / kInvalidInput) the framebuffer is left as it was. Every draw call
   // that cannot get the memory it needs (a bin memory budget larger than the memory there is)
-  // ends with Error(kOutOfMemory); the framebuffer then holds the passes drawn before.
+  // ends with Error(kOutOfMemory), whose message names the bin budget when the bins were what
+  // could not be allocated. The framebuffer then holds part of the draw: each tile the draw's
+  // primitives up to some point in submission order, not the same point in every tile; the
+  // counters count part of it. The renderer and the framebuffer stay usable: a later draw
+  // draws as it would on a framebuffer that held those pixels.
   void draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input);
 
   // Draws one point per vertex (per index when there are indices), rules in primitives.hpp.
-  // Validated like draw(); a bad point state is an Error(kInvalidArgument).
+  // Validated, and failing for memory, like draw(); a bad point state is an
+  // Error(kInvalidArgument).
   void draw_points(Framebuffer& target, const PipelineState& pipeline, const PointState& state,
                    const DrawInput& input);
   // Draws lines of the state's topology through the vertices (or indices). A line list needs

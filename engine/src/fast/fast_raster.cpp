@@ -63,6 +63,17 @@ void invalidate_hiz(detail::FramebufferStorage& fb) {
   fb.hiz_valid = true;
 }
 
+// Runs body in arena, a pass's setup and binning, whose allocations the bin budget bounds:
+// their std::bad_alloc becomes BinMemoryError.
+template <typename Body>
+void execute_binning(tbb::task_arena& arena, const Body& body) {
+  try {
+    arena.execute(body);
+  } catch (const std::bad_alloc&) {
+    throw BinMemoryError();
+  }
+}
+
 }  // namespace
 
 struct FastRasterizer::State {
@@ -223,7 +234,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     }
 
     // Setup and binning, one task per chunk.
-    arena.execute([&] {
+    execute_binning(arena, [&] {
       tbb::parallel_for(size_t{0}, chunk_count, [&](size_t c) {
         Chunk& chunk = st.chunks[c];
         chunk.setups.clear();

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <new>
 
 #include <tbb/task_arena.h>
 
@@ -12,6 +13,12 @@
 #include "tessera/renderer.hpp"
 
 namespace tessera::fast {
+
+// What draw() throws when a pass's setup and binning, whose memory the bin budget bounds,
+// cannot get that memory: a smaller budget would draw in more passes with less.
+struct BinMemoryError : std::bad_alloc {
+  const char* what() const noexcept override { return "bin memory exhausted"; }
+};
 
 class FastRasterizer {
  public:
@@ -34,7 +41,8 @@ class FastRasterizer {
   // Draws a validated draw call (see draw_validation.hpp) inside `arena`. With check_finite,
   // a draw checks_finite_values() accepts whose finite values were not validated: each
   // piece's vertices are checked as it is set up, and a NaN or infinity anywhere throws
-  // validation's error (check_finite_values) before anything is drawn or counted.
+  // validation's error (check_finite_values) before anything is drawn or counted. Throws
+  // BinMemoryError when a pass cannot allocate its setups and bins.
   void draw(tbb::task_arena& arena, detail::FramebufferStorage& target,
             const PipelineState& pipeline, const DrawInput& input, Counters& counters,
             bool check_finite = false);
