@@ -364,6 +364,23 @@ TEST(PrimitiveEngine, AntialiasedLinesIntoRgba8MatchTheReference) {
   }
 }
 
+// Antialiased lines with colour writes off write depth only, into RGBA8 and RGBA32F targets
+// alike (an RGBA32F target has no 8-bit colour for the blend to read).
+TEST(PrimitiveEngine, AntialiasedLinesWithoutColourWritesWriteTheReferencesDepth) {
+  const Soup soup = random_segments(13, 400);
+  for (ColorFormat format : {ColorFormat::kRGBA8, ColorFormat::kRGBA32F}) {
+    SCOPED_TRACE(format == ColorFormat::kRGBA8 ? "rgba8" : "rgba32f");
+    LineState state;
+    state.antialiased = true;
+    state.width = 2.5f;
+    PipelineState p = always();
+    p.color_write = false;
+    expect_engine_matches(
+        [&](Renderer& r, Framebuffer& fb) { r.draw_lines(fb, p, state, soup.input()); }, true, 1,
+        format);
+  }
+}
+
 TEST(PrimitiveEngine, WideLinesWithJoinsMatchTheReference) {
   for (LineJoin join : {LineJoin::kMiter, LineJoin::kRound, LineJoin::kBevel}) {
     SCOPED_TRACE(static_cast<int>(join));

@@ -24,6 +24,13 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace {
 
+// Pixel (px, py)'s place in a one-sample framebuffer's storage (sample_index).
+HWY_INLINE uint32_t pixel_offset(uint32_t px, uint32_t py, uint32_t tiles_x) {
+  return ((py >> binning::kTileSizeLog2) * tiles_x + (px >> binning::kTileSizeLog2)) *
+             binning::kTilePixels +
+         detail::in_tile(px, py);
+}
+
 #if !HWY_HAVE_FLOAT64 || HWY_TARGET == HWY_SCALAR
 void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, size_t n,
                   const LineRunOut& out) {
@@ -38,11 +45,8 @@ void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, siz
       tc = qa + qb > 0.0 ? qb / (qa + qb) : t;
     }
     out.depth[i] = static_cast<float>(sh.z + t * sh.dz);
-    const uint32_t px = static_cast<uint32_t>(x[i]), py = static_cast<uint32_t>(y[i]);
     const uint32_t offset =
-        ((py >> binning::kTileSizeLog2) * out.tiles_x + (px >> binning::kTileSizeLog2)) *
-            binning::kTilePixels +
-        detail::in_tile(px, py);
+        pixel_offset(static_cast<uint32_t>(x[i]), static_cast<uint32_t>(y[i]), out.tiles_x);
     out.offset[i] = offset;
     float color[4];
     for (int c = 0; c < 4; ++c)
@@ -56,7 +60,8 @@ void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, siz
       const double c_along = std::clamp(std::min(along, sh.length - along) + 0.5, 0.0, 1.0);
       const float coverage = static_cast<float>(c_across * c_along);
       out.coverage[i] = coverage;
-      if (!(coverage > 0.0f)) continue;  // not drawn: dst is not read
+      // Not drawn, or no colour written: dst is not read (nor rgba[i] formed).
+      if (!(coverage > 0.0f) || out.dst == nullptr) continue;
       const float a = std::clamp(color[3], 0.0f, 1.0f) * std::min(coverage, 1.0f);
       float dst[4];
       for (int c = 0; c < 4; ++c)
@@ -140,6 +145,12 @@ void ShadeLinePixels(const LineShading& sh, const int32_t* x, const int32_t* y, 
   const auto block_mask = hn::Set(di, static_cast<int32_t>(detail::kBlockSize - 1));
   const auto block_pixels = hn::Set(di, static_cast<int32_t>(detail::kBlockPixels));
   const auto tiles_x = hn::Set(di, static_cast<int32_t>(out.tiles_x));
+  if (n == 0) return;
+  // Where lanes that draw nothing read the framebuffer for the blend: the run's first pixel,
+  // which lies in the tile this task draws (other lanes' offsets may lie in another task's
+  // tile, or off the framebuffer).
+  const auto first_pixel = hn::Set(
+      du, pixel_offset(static_cast<uint32_t>(x[0]), static_cast<uint32_t>(y[0]), out.tiles_x));
   for (size_t i = 0; i < n; i += lanes) {
     // sample_index: the storage tile's pixels, then detail::in_tile: block (ty / 8) * 8 + tx / 8
     // of 64 pixels, then row-major in the block.
@@ -168,12 +179,16 @@ void ShadeLinePixels(const LineShading& sh, const int32_t* x, const int32_t* y, 
           df, hn::DemoteTo(dfh, smooth_coverage(dd, sh, x + i + half_lanes, y + i + half_lanes)),
           hn::DemoteTo(dfh, smooth_coverage(dd, sh, x + i, y + i)));
       hn::StoreU(coverage, df, out.coverage + i);
-      // Source over the framebuffer's colour, read where the pixel is drawn (other lanes read
-      // the tile's first pixel: their offsets may lie off the framebuffer).
+    }
+    if (sh.smooth && out.dst != nullptr) {
+      // Source over the framebuffer's colour, read where the pixel is drawn.
+      const auto coverage = hn::LoadU(df, out.coverage + i);
       const auto drawn =
           hn::And(hn::Gt(coverage, hn::Zero(df)), hn::RebindMask(df, hn::FirstN(di, n - i)));
-      const auto dst =
-          hn::GatherIndex(du, out.dst, hn::IfThenElseZero(hn::RebindMask(di, drawn), offset));
+      const auto dst = hn::GatherIndex(
+          du, out.dst,
+          hn::BitCast(
+              di, hn::IfThenElse(hn::RebindMask(du, drawn), hn::BitCast(du, offset), first_pixel)));
       const auto alpha = hn::Mul(hn::Min(hn::Max(a, hn::Zero(df)), hn::Set(df, 1.0f)),
                                  hn::Min(coverage, hn::Set(df, 1.0f)));
       const auto keep = hn::Sub(hn::Set(df, 1.0f), alpha);

@@ -40,8 +40,10 @@ struct LineRunOut {
   uint32_t* rgba;
   float* depth;
   uint32_t* offset;
-  float* coverage;      // smooth lines
-  const uint32_t* dst;  // smooth lines: the RGBA8 framebuffer read for blending
+  float* coverage;  // smooth lines
+  // Smooth lines: the RGBA8 framebuffer read for blending, or null when no colour is written
+  // (rgba is then not formed).
+  const uint32_t* dst;
   uint32_t tiles_x;
 };
 using LineShadeFn = void (*)(const LineShading&, const int32_t* x, const int32_t* y, size_t n,

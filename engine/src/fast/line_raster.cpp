@@ -403,10 +403,12 @@ struct RunWriter {
   void flush(const LineShading& sh, size_t n) {
     if (n == 0) return;
     uint8_t* colour = fb.rgba8.data();
-    shade(sh, x, y, n,
-          LineRunOut{rgba, depth, offset, coverage, reinterpret_cast<const uint32_t*>(colour),
-                     fb.grid.tiles_x});
     const bool write_colour = pipeline.color_write;
+    // Without colour writes an RGBA32F target has no 8-bit colour (applies()): none is read.
+    shade(sh, x, y, n,
+          LineRunOut{rgba, depth, offset, coverage,
+                     write_colour ? reinterpret_cast<const uint32_t*>(colour) : nullptr,
+                     fb.grid.tiles_x});
     if (!pipeline.depth_test && !sh.smooth) {
       if (write_colour) {
         for (size_t i = 0; i < n; ++i)
