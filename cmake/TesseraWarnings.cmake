@@ -11,6 +11,15 @@ if(TESSERA_SANITIZE)
                       -fno-sanitize-recover=all)
   add_link_options(-fsanitize=address,undefined,float-cast-overflow)
 endif()
+# ThreadSanitizer for the multithreaded paths (the tsan preset). It cannot share a build with
+# AddressSanitizer.
+if(TESSERA_TSAN)
+  if(TESSERA_SANITIZE)
+    message(FATAL_ERROR "TESSERA_TSAN and TESSERA_SANITIZE cannot be combined")
+  endif()
+  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=thread)
+endif()
 # Coverage instrumentation for libFuzzer in every target; only the fuzz targets link the
 # fuzzer's main (tests/fuzz/CMakeLists.txt).
 if(TESSERA_FUZZING)
