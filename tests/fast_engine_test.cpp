@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <span>
@@ -1357,6 +1358,56 @@ TEST(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
       EXPECT_EQ(plain.rgba8, ref.rgba8);
       EXPECT_EQ(0, std::memcmp(plain.depth.data(), ref.depth.data(), ref.depth.size() * 4));
     });
+  }
+}
+
+// A depth buffer cleared to NaN, one block of it then written in part: a NaN sample fails
+// every ordering compare, so a triangle in front of the written samples must not be accepted
+// over the whole block by Hi-Z (whose bounds are computed from the block's samples).
+TEST(FastEngine, HiZAcceptsNoBlockThatHoldsNaNDepth) {
+  const auto draw = [](Backend backend, const Config& config, DepthFormat format, CompareOp op) {
+    RendererOptions options;
+    options.backend = backend;
+    options.simd = config.target;
+    options.threads = config.threads;
+    Renderer renderer(options);
+    Framebuffer fb({64, 64, 1, ColorFormat::kRGBA8, format});
+    fb.clear_color({0.0f, 0.0f, 0.0f, 1.0f});
+    fb.clear_depth(std::numeric_limits<float>::quiet_NaN());
+    const auto x = [](float px) { return px / 32.0f - 1.0f; };
+    const auto y = [](float py) { return 1.0f - py / 32.0f; };
+    // Depth 0.4375 over the first four columns of block (0, 0), whatever is there.
+    const std::vector<Float4> rect = {{x(0), y(0), 0.4375f, 1}, {x(4), y(0), 0.4375f, 1},
+                                      {x(0), y(8), 0.4375f, 1}, {x(4), y(0), 0.4375f, 1},
+                                      {x(4), y(8), 0.4375f, 1}, {x(0), y(8), 0.4375f, 1}};
+    const std::vector<float> grey(rect.size() * 4, 0.5f);
+    PipelineState always;
+    always.depth_compare = CompareOp::kAlways;
+    renderer.draw(fb, always, {rect, grey, 4, {}});
+    // Red over the whole screen, in front of the rectangle under `op`. (Depths whose 16-bit
+    // steps lie far from a tie, so that both engines round them alike.)
+    const float z = op == CompareOp::kLess || op == CompareOp::kLessEqual ? 0.125f : 0.875f;
+    const std::vector<Float4> screen = {{-1, -1, z, 1}, {3, -1, z, 1}, {-1, 3, z, 1}};
+    const std::vector<float> red = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
+    PipelineState tested;
+    tested.depth_compare = op;
+    renderer.draw(fb, tested, {screen, red, 4, {}});
+    return std::make_pair(fb.read_rgba8(), fb.read_depth());
+  };
+  for (DepthFormat format : {DepthFormat::kFloat32, DepthFormat::kUnorm16}) {
+    for (CompareOp op :
+         {CompareOp::kLess, CompareOp::kLessEqual, CompareOp::kGreater, CompareOp::kGreaterEqual}) {
+      SCOPED_TRACE(testing::Message() << "depth format " << static_cast<int>(format) << ", compare "
+                                      << static_cast<int>(op));
+      const auto ref = draw(Backend::kReference, {SimdTarget::kAuto, 1}, format, op);
+      EXPECT_EQ(ref.first[4 * 4], 0);  // pixel (4, 0) held NaN: still the clear colour
+      EXPECT_EQ(ref.first[0], 255);    // pixel (0, 0) held 0.4375: red
+      for_each_config([&](const Config& config) {
+        const auto fast = draw(Backend::kFast, config, format, op);
+        EXPECT_EQ(fast.first, ref.first);
+        EXPECT_EQ(0, std::memcmp(fast.second.data(), ref.second.data(), ref.second.size() * 4));
+      });
+    }
   }
 }
 

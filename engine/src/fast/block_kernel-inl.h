@@ -306,17 +306,27 @@ inline void mark_hiz_dirty(const TileContext& tc, size_t block) {
   tc.hiz_max[block] = -std::numeric_limits<float>::infinity();
 }
 
+// A block holding a NaN sample (a NaN depth clear), which fails every ordering compare and
+// which Min and Max may drop, is bounded by [-inf, inf]: up to date, and neither rejected nor
+// accepted.
 void refresh_hiz(const TileContext& tc, size_t block, uint32_t samples) {
   const hn::ScalableTag<float> df;
   const float* depth = tc.depth + block * 64;
   auto lo = hn::Set(df, std::numeric_limits<float>::infinity());
   auto hi = hn::Set(df, -std::numeric_limits<float>::infinity());
+  auto nan = hn::FirstN(df, 0);
   for (uint32_t s = 0; s < samples; ++s) {
     for (size_t i = 0; i < 64; i += hn::Lanes(df)) {
       const auto z = hn::Load(df, depth + s * kSamplePlane + i);
       lo = hn::Min(lo, z);
       hi = hn::Max(hi, z);
+      nan = hn::Or(nan, hn::IsNaN(z));
     }
+  }
+  if (!hn::AllFalse(df, nan)) {
+    tc.hiz_min[block] = -std::numeric_limits<float>::infinity();
+    tc.hiz_max[block] = std::numeric_limits<float>::infinity();
+    return;
   }
   tc.hiz_min[block] = hn::GetLane(hn::MinOfLanes(df, lo));
   tc.hiz_max[block] = hn::GetLane(hn::MaxOfLanes(df, hi));
