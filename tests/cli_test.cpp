@@ -273,15 +273,15 @@ INSTANTIATE_TEST_SUITE_P(
 // limited to 1.5 GB of address space) ends with the engine's out-of-memory error, which names
 // the budget, not with std::bad_alloc. (The sanitizers reserve more address space than that.)
 TEST(Cli, ADrawPastTheMemoryThereIsIsAnOutOfMemoryErrorNamingTheBudget) {
-#if defined(__SANITIZE_ADDRESS__)
-#define TESSERA_TEST_ASAN 1
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define TESSERA_TEST_SANITIZER 1
 #elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define TESSERA_TEST_ASAN 1
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define TESSERA_TEST_SANITIZER 1
 #endif
 #endif
-#ifdef TESSERA_TEST_ASAN
-  GTEST_SKIP() << "AddressSanitizer needs more address space than the limit";
+#ifdef TESSERA_TEST_SANITIZER
+  GTEST_SKIP() << "the sanitizer needs more address space than the limit";
 #else
   if (std::system("prlimit --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "no prlimit";
   TempDir dir;
