@@ -37,7 +37,8 @@ TriangleList square_points(std::span<const WindowPoint> points, float size, uint
 // Wide lines: one rectangle per stipple dash, plus the joins of connected segments, handed to
 // `sink` in submission order as lists of about kWideLineChunk triangles: a segment's dashes and
 // join are never split, and a list is handed on once it holds kWideLineChunk or more, so a
-// line draw's triangles take memory bounded by the chunk and the viewport, not by the draw.
+// line draw's triangles take memory bounded by the chunk plus one segment's, not by the draw.
+// (Each list is a draw of its own: Counters::bin_passes counts each list's passes.)
 inline constexpr size_t kWideLineChunk = size_t{1} << 16;
 using TriangleSink = std::function<void(const TriangleList&)>;
 void wide_lines(std::span<const WindowSegment> segments, const LineState& state, uint32_t width,

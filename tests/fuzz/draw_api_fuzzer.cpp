@@ -144,9 +144,9 @@ Call decode_call(FuzzedDataProvider& in, uint32_t fb_samples) {
   c.line.join = some_enum(in, LineJoin::kBevel);
   c.line.miter_limit = in.ConsumeBool() ? hostile_float(in, 1.0f) : 4.0f;
   // A quarter of the patterns solid (0xFFFF, the default: no stipple), whose lines take the
-  // fast engine's run writer and the wide lines' whole rectangles.
-  const uint16_t pattern = in.ConsumeIntegral<uint16_t>();
-  c.line.stipple.pattern = pattern % 4 == 0 ? uint16_t{0xFFFF} : pattern;
+  // fast engine's run writer and the wide lines' whole rectangles; the others any pattern.
+  c.line.stipple.pattern =
+      in.ConsumeIntegralInRange<int>(0, 3) == 0 ? uint16_t{0xFFFF} : in.ConsumeIntegral<uint16_t>();
   c.line.stipple.factor = in.ConsumeIntegralInRange<uint32_t>(0, 257);
   c.line.antialiased = in.ConsumeBool();
   c.polygon.fill_rule = some_enum(in, FillRule::kNonZero);

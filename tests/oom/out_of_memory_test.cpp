@@ -3,8 +3,8 @@
 // fewer than N. Every failure must end the draw with Error(kOutOfMemory), whose message names
 // the bin budget only when the bins were what failed, and leave a renderer and a framebuffer
 // that draw the next scene exactly as a fresh renderer draws it on a framebuffer holding the
-// same pixels (no Hi-Z bounds left stale by the failed draw's tiles). Its own executable: it
-// replaces the global operator new.
+// same pixels (no Hi-Z bounds left stale by the failed draw's tiles, no scratch left half
+// made). Its own executable: it replaces the global operator new.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -31,6 +31,7 @@ void* allocate(size_t bytes, size_t alignment) {
     throw std::bad_alloc();
   }
   if (bytes == 0) bytes = 1;
+  if (alignment > alignof(std::max_align_t) && bytes > SIZE_MAX - alignment) throw std::bad_alloc();
   void* p = alignment <= alignof(std::max_align_t)
                 ? std::malloc(bytes)
                 : std::aligned_alloc(alignment, (bytes + alignment - 1) / alignment * alignment);
@@ -51,6 +52,48 @@ void* operator new(size_t bytes, std::align_val_t alignment) {
 }
 void* operator new[](size_t bytes, std::align_val_t alignment) {
   return allocate(bytes, static_cast<size_t>(alignment));
+}
+// The nothrow forms too, so that no allocation reaches another allocator's new (the
+// sanitizer's) and comes back through this delete.
+void* operator new(size_t bytes, const std::nothrow_t&) noexcept {
+  try {
+    return allocate(bytes, 0);
+  } catch (const std::bad_alloc&) {
+    return nullptr;
+  }
+}
+void* operator new[](size_t bytes, const std::nothrow_t&) noexcept {
+  try {
+    return allocate(bytes, 0);
+  } catch (const std::bad_alloc&) {
+    return nullptr;
+  }
+}
+void* operator new(size_t bytes, std::align_val_t alignment, const std::nothrow_t&) noexcept {
+  try {
+    return allocate(bytes, static_cast<size_t>(alignment));
+  } catch (const std::bad_alloc&) {
+    return nullptr;
+  }
+}
+void* operator new[](size_t bytes, std::align_val_t alignment, const std::nothrow_t&) noexcept {
+  try {
+    return allocate(bytes, static_cast<size_t>(alignment));
+  } catch (const std::bad_alloc&) {
+    return nullptr;
+  }
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  std::free(p);
 }
 void operator delete(void* p) noexcept {
   std::free(p);
@@ -231,8 +274,11 @@ TEST_P(OutOfMemory, EveryFailedAllocationEndsTheDrawWithAnErrorAndLeavesItUsable
     Framebuffer copy(desc);
     copy_pixels(fb, copy);
     Renderer fresh(fresh_options);
+    // The next draws: triangles, then the failed draw's kind again.
     draw_triangles(renderer, fb, next.input());
     draw_triangles(fresh, copy, next.input());
+    c.draw(renderer, fb, next.input());
+    c.draw(fresh, copy, next.input());
     ASSERT_EQ(fb.read_rgba8(), copy.read_rgba8()) << "allocation " << n;
     ASSERT_EQ(fb.read_sample_depth(), copy.read_sample_depth()) << "allocation " << n;
   }

@@ -147,7 +147,8 @@ class Renderer {
   // ends with Error(kOutOfMemory), whose message names the bin budget when the bins were what
   // could not be allocated. The framebuffer then holds part of the draw: each tile the draw's
   // primitives up to some point in submission order, not the same point in every tile; the
-  // counters count part of it. The renderer and the framebuffer stay usable: a later draw
+  // counters are left partly updated (the passes drawn before may count their triangles and
+  // bins but not their samples). The renderer and the framebuffer stay usable: a later draw
   // draws as it would on a framebuffer that held those pixels.
   void draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input);
 

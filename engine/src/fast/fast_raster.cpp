@@ -63,15 +63,21 @@ void invalidate_hiz(detail::FramebufferStorage& fb) {
   fb.hiz_valid = true;
 }
 
-// Runs body in arena, a pass's setup and binning, whose allocations the bin budget bounds:
-// their std::bad_alloc becomes BinMemoryError.
+// Runs body, whose allocations the bin budget bounds (the chunks, a pass's setup and
+// binning): their std::bad_alloc becomes BinMemoryError.
 template <typename Body>
-void execute_binning(tbb::task_arena& arena, const Body& body) {
+void bin_allocations(const Body& body) {
   try {
-    arena.execute(body);
+    body();
   } catch (const std::bad_alloc&) {
     throw BinMemoryError();
   }
+}
+
+// A pass's setup and binning, run in arena.
+template <typename Body>
+void execute_binning(tbb::task_arena& arena, const Body& body) {
+  bin_allocations([&] { arena.execute(body); });
 }
 
 }  // namespace
@@ -191,7 +197,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   const uint64_t per_tile = binning::Bins::kBytesPerTile;
   while (chunk_count > 1 && chunk_count * (tiles + 1) * per_tile * 4 > st.budget)
     --chunk_count;
-  if (st.chunks.size() < chunk_count) st.chunks.resize(chunk_count);
+  if (st.chunks.size() < chunk_count) bin_allocations([&] { st.chunks.resize(chunk_count); });
   // The chunks themselves, the allocator's headers of their arrays and the draw's own
   // bookkeeping (per-thread counters, task state: kBookkeeping) come out of it too.
   constexpr uint64_t kChunkOverhead = sizeof(Chunk) + 256;

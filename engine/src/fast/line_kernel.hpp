@@ -42,7 +42,7 @@ struct LineRunOut {
   uint32_t* offset;
   float* coverage;  // smooth lines
   // Smooth lines: the RGBA8 framebuffer read for blending, or null when no colour is written
-  // (rgba is then not formed).
+  // (rgba is then not blended, and not to be read).
   const uint32_t* dst;
   uint32_t tiles_x;
 };
