@@ -55,33 +55,24 @@ void* operator new[](size_t bytes, std::align_val_t alignment) {
 }
 // The nothrow forms too, so that no allocation reaches another allocator's new (the
 // sanitizer's) and comes back through this delete.
-void* operator new(size_t bytes, const std::nothrow_t&) noexcept {
+static void* allocate_or_null(size_t bytes, size_t alignment) noexcept {
   try {
-    return allocate(bytes, 0);
+    return allocate(bytes, alignment);
   } catch (const std::bad_alloc&) {
     return nullptr;
   }
+}
+void* operator new(size_t bytes, const std::nothrow_t&) noexcept {
+  return allocate_or_null(bytes, 0);
 }
 void* operator new[](size_t bytes, const std::nothrow_t&) noexcept {
-  try {
-    return allocate(bytes, 0);
-  } catch (const std::bad_alloc&) {
-    return nullptr;
-  }
+  return allocate_or_null(bytes, 0);
 }
 void* operator new(size_t bytes, std::align_val_t alignment, const std::nothrow_t&) noexcept {
-  try {
-    return allocate(bytes, static_cast<size_t>(alignment));
-  } catch (const std::bad_alloc&) {
-    return nullptr;
-  }
+  return allocate_or_null(bytes, static_cast<size_t>(alignment));
 }
 void* operator new[](size_t bytes, std::align_val_t alignment, const std::nothrow_t&) noexcept {
-  try {
-    return allocate(bytes, static_cast<size_t>(alignment));
-  } catch (const std::bad_alloc&) {
-    return nullptr;
-  }
+  return allocate_or_null(bytes, static_cast<size_t>(alignment));
 }
 void operator delete(void* p, const std::nothrow_t&) noexcept {
   std::free(p);
