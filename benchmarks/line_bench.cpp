@@ -20,6 +20,9 @@ using Clock = std::chrono::steady_clock;
 struct Variant {
   const char* name;
   tessera::LineState state;
+  // Depth test LESS and depth writes, no colour writes (the depth buffer cleared each frame),
+  // in place of colour without a depth test.
+  bool depth_only = false;
 };
 
 std::vector<Variant> variants() {
@@ -40,6 +43,8 @@ std::vector<Variant> variants() {
   s = {};
   s.antialiased = true;
   v.push_back({"smooth", s});
+  v.push_back({"diamond_depth", {}, true});
+  v.push_back({"smooth_depth", s, true});
   return v;
 }
 
@@ -67,8 +72,10 @@ int main(int argc, char** argv) {
 
   const tessera::bench::LineWorkload lines = tessera::bench::random_lines();
   const tessera::DrawInput input{lines.positions, lines.colors, 4, {}};
-  tessera::PipelineState pipeline;
-  pipeline.depth_test = false;  // the lecture's timing: lines only, as llvmpipe is run
+  tessera::PipelineState colour;
+  colour.depth_test = false;  // the lecture's timing: lines only, as llvmpipe is run
+  tessera::PipelineState depth_only;
+  depth_only.color_write = false;
   for (uint32_t t : threads) {
     tessera::RendererOptions options;
     options.threads = t;
@@ -78,9 +85,11 @@ int main(int argc, char** argv) {
                              tessera::ColorFormat::kRGBA8});
     for (const Variant& v : variants()) {
       if (!only.empty() && only != v.name) continue;
+      const tessera::PipelineState& pipeline = v.depth_only ? depth_only : colour;
       auto frame = [&] {
         const auto t0 = Clock::now();
         fb.clear_color({0, 0, 0, 1});
+        if (v.depth_only) fb.clear_depth(1.0f);
         renderer.draw_lines(fb, pipeline, v.state, input);
         return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
       };
@@ -96,7 +105,10 @@ int main(int argc, char** argv) {
           backend.c_str(), v.name, renderer.threads(), frames, median,
           *std::min_element(times.begin(), times.end()),
           tessera::bench::kLineCount / (median * 1e-3) / 1e6,
-          static_cast<unsigned long long>(renderer.counters().pixels_shaded / frames),
+          // Pixels written: shaded, or for depth only the depth test's passes.
+          static_cast<unsigned long long>((v.depth_only ? renderer.counters().samples_passed
+                                                        : renderer.counters().pixels_shaded) /
+                                          frames),
           renderer.simd_target());
       std::fflush(stdout);
     }
