@@ -48,9 +48,7 @@ void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, siz
     const uint32_t offset =
         pixel_offset(static_cast<uint32_t>(x[i]), static_cast<uint32_t>(y[i]), out.tiles_x);
     out.offset[i] = offset;
-    float color[4];
-    for (int c = 0; c < 4; ++c)
-      color[c] = static_cast<float>(sh.color[c] + tc * sh.dcolor[c]);
+    float coverage = 0.0f;
     if (sh.smooth) {
       const double qx = static_cast<double>(x[i]) + 0.5 - sh.ax;
       const double qy = static_cast<double>(y[i]) + 0.5 - sh.ay;
@@ -58,10 +56,16 @@ void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, siz
       const double across = std::abs(qx * sh.uy - qy * sh.ux);
       const double c_across = std::clamp(sh.cover_reach - across, 0.0, 1.0);
       const double c_along = std::clamp(std::min(along, sh.length - along) + 0.5, 0.0, 1.0);
-      const float coverage = static_cast<float>(c_across * c_along);
+      coverage = static_cast<float>(c_across * c_along);
       out.coverage[i] = coverage;
-      // Not drawn, or no colour written: dst is not read (nor rgba[i] formed).
-      if (!(coverage > 0.0f) || out.dst == nullptr) continue;
+    }
+    // No colour written (dst null): rgba[i] is not formed. A smooth line's pixel that is not
+    // drawn reads no dst either.
+    if (out.dst == nullptr || (sh.smooth && !(coverage > 0.0f))) continue;
+    float color[4];
+    for (int c = 0; c < 4; ++c)
+      color[c] = static_cast<float>(sh.color[c] + tc * sh.dcolor[c]);
+    if (sh.smooth) {
       const float a = std::clamp(color[3], 0.0f, 1.0f) * std::min(coverage, 1.0f);
       float dst[4];
       for (int c = 0; c < 4; ++c)
@@ -169,39 +173,42 @@ void ShadeLinePixels(const LineShading& sh, const int32_t* x, const int32_t* y, 
 
     const auto t_lo = line_t(dd, sh, x + i, y + i);
     const auto t_hi = line_t(dd, sh, x + i + half_lanes, y + i + half_lanes);
-    const auto tc_lo = color_t(dd, sh, t_lo), tc_hi = color_t(dd, sh, t_hi);
-    auto r = lerp_to_float(df, dd, sh.color[0], sh.dcolor[0], tc_lo, tc_hi);
-    auto g = lerp_to_float(df, dd, sh.color[1], sh.dcolor[1], tc_lo, tc_hi);
-    auto b = lerp_to_float(df, dd, sh.color[2], sh.dcolor[2], tc_lo, tc_hi);
-    auto a = lerp_to_float(df, dd, sh.color[3], sh.dcolor[3], tc_lo, tc_hi);
-    if (sh.smooth) {
-      const auto coverage = hn::Combine(
-          df, hn::DemoteTo(dfh, smooth_coverage(dd, sh, x + i + half_lanes, y + i + half_lanes)),
-          hn::DemoteTo(dfh, smooth_coverage(dd, sh, x + i, y + i)));
-      hn::StoreU(coverage, df, out.coverage + i);
+    const auto coverage =
+        sh.smooth ? hn::Combine(df,
+                                hn::DemoteTo(dfh, smooth_coverage(dd, sh, x + i + half_lanes,
+                                                                  y + i + half_lanes)),
+                                hn::DemoteTo(dfh, smooth_coverage(dd, sh, x + i, y + i)))
+                  : hn::Zero(df);
+    if (sh.smooth) hn::StoreU(coverage, df, out.coverage + i);
+    // Without colour writes (dst null) the colour is neither formed nor blended.
+    if (out.dst != nullptr) {
+      const auto tc_lo = color_t(dd, sh, t_lo), tc_hi = color_t(dd, sh, t_hi);
+      auto r = lerp_to_float(df, dd, sh.color[0], sh.dcolor[0], tc_lo, tc_hi);
+      auto g = lerp_to_float(df, dd, sh.color[1], sh.dcolor[1], tc_lo, tc_hi);
+      auto b = lerp_to_float(df, dd, sh.color[2], sh.dcolor[2], tc_lo, tc_hi);
+      auto a = lerp_to_float(df, dd, sh.color[3], sh.dcolor[3], tc_lo, tc_hi);
+      if (sh.smooth) {
+        // Source over the framebuffer's colour, read where the pixel is drawn.
+        const auto drawn =
+            hn::And(hn::Gt(coverage, hn::Zero(df)), hn::RebindMask(df, hn::FirstN(di, n - i)));
+        const auto dst =
+            hn::GatherIndex(du, out.dst,
+                            hn::BitCast(di, hn::IfThenElse(hn::RebindMask(du, drawn),
+                                                           hn::BitCast(du, offset), first_pixel)));
+        const auto alpha = hn::Mul(hn::Min(hn::Max(a, hn::Zero(df)), hn::Set(df, 1.0f)),
+                                   hn::Min(coverage, hn::Set(df, 1.0f)));
+        const auto keep = hn::Sub(hn::Set(df, 1.0f), alpha);
+        const auto channel = [&](int shift) {
+          const auto byte = hn::And(hn::ShiftRightSame(dst, shift), hn::Set(du, 0xFFu));
+          return hn::Div(hn::ConvertTo(df, hn::BitCast(di, byte)), hn::Set(df, 255.0f));
+        };
+        r = hn::Add(hn::Mul(r, alpha), hn::Mul(channel(0), keep));
+        g = hn::Add(hn::Mul(g, alpha), hn::Mul(channel(8), keep));
+        b = hn::Add(hn::Mul(b, alpha), hn::Mul(channel(16), keep));
+        a = hn::Add(alpha, hn::Mul(channel(24), keep));
+      }
+      hn::StoreU(pack_unorm8(df, r, g, b, a), du, out.rgba + i);
     }
-    if (sh.smooth && out.dst != nullptr) {
-      // Source over the framebuffer's colour, read where the pixel is drawn.
-      const auto coverage = hn::LoadU(df, out.coverage + i);
-      const auto drawn =
-          hn::And(hn::Gt(coverage, hn::Zero(df)), hn::RebindMask(df, hn::FirstN(di, n - i)));
-      const auto dst = hn::GatherIndex(
-          du, out.dst,
-          hn::BitCast(
-              di, hn::IfThenElse(hn::RebindMask(du, drawn), hn::BitCast(du, offset), first_pixel)));
-      const auto alpha = hn::Mul(hn::Min(hn::Max(a, hn::Zero(df)), hn::Set(df, 1.0f)),
-                                 hn::Min(coverage, hn::Set(df, 1.0f)));
-      const auto keep = hn::Sub(hn::Set(df, 1.0f), alpha);
-      const auto channel = [&](int shift) {
-        const auto byte = hn::And(hn::ShiftRightSame(dst, shift), hn::Set(du, 0xFFu));
-        return hn::Div(hn::ConvertTo(df, hn::BitCast(di, byte)), hn::Set(df, 255.0f));
-      };
-      r = hn::Add(hn::Mul(r, alpha), hn::Mul(channel(0), keep));
-      g = hn::Add(hn::Mul(g, alpha), hn::Mul(channel(8), keep));
-      b = hn::Add(hn::Mul(b, alpha), hn::Mul(channel(16), keep));
-      a = hn::Add(alpha, hn::Mul(channel(24), keep));
-    }
-    hn::StoreU(pack_unorm8(df, r, g, b, a), du, out.rgba + i);
     hn::StoreU(lerp_to_float(df, dd, sh.z, sh.dz, t_lo, t_hi), df, out.depth + i);
   }
 #else

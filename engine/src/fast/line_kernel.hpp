@@ -30,19 +30,19 @@ struct LineShading {
   double ux = 0, uy = 0, cover_reach = 0, length = 0;
 };
 
-// Shades pixels (x[i], y[i]), i < n: rgba[i] holds the unorm8 colour (r in the low byte; for
-// a smooth line, blended over dst[offset[i]] with coverage[i] as written when it is > 0),
-// depth[i] the interpolated depth before clamping and encoding, offset[i] the pixel's place in
-// a one-sample framebuffer's storage (FramebufferStorage::sample_index, with tiles_x storage
-// tiles per row). Reads and writes up to n rounded up to the vector width
-// (the arrays are kLineRunCapacity long).
+// Shades pixels (x[i], y[i]), i < n: when dst is not null, rgba[i] holds the unorm8 colour (r in
+// the low byte; for a smooth line, only where coverage[i] as written is > 0, blended over
+// dst[offset[i]]); depth[i] the interpolated depth before clamping and encoding, offset[i] the
+// pixel's place in a one-sample framebuffer's storage (FramebufferStorage::sample_index, with
+// tiles_x storage tiles per row). Reads and writes up to n rounded up to the vector width (the
+// arrays are kLineRunCapacity long).
 struct LineRunOut {
   uint32_t* rgba;
   float* depth;
   uint32_t* offset;
   float* coverage;  // smooth lines
-  // Smooth lines: the RGBA8 framebuffer read for blending, or null when no colour is written
-  // (rgba is then not blended, and not to be read).
+  // The RGBA8 framebuffer, which smooth lines read for blending; null when no colour is
+  // written (rgba is then not formed).
   const uint32_t* dst;
   uint32_t tiles_x;
 };
