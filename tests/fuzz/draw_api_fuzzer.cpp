@@ -1,5 +1,6 @@
 // Fuzzes the public draw API with hostile state and vertex data on the fast and reference backends:
-// both throw the same tessera::Error or both draw, a failed draw changes nothing, coverage agrees.
+// both throw the same tessera::Error or both draw, a failed draw changes nothing, coverage agrees
+// for every primitive.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <array>
@@ -12,6 +13,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tessera/tessera.hpp"
@@ -106,11 +108,15 @@ struct Call {
   uint32_t attribute_count = 4;
   std::vector<uint32_t> indices;
   std::vector<uint32_t> contours;
-  // Coverage comparison: depth compare ALWAYS and a flat depth per triangle, so a sample's final
-  // depth names the last triangle that covered it (tests/fast_engine_test.cpp).
+  // Coverage comparison: a flat depth per primitive (one for the whole draw where strips, loops,
+  // polygons and indexed draws share vertices between primitives) under compare ALWAYS, or
+  // with a depth per primitive any compare op (decode_call), so a sample's final depth names
+  // the primitive that won it (tests/fast_engine_test.cpp, tests/primitive_engine_test.cpp).
   bool compare = false;
   // Colours are compared too (within one 8-bit step) when the vertices are tame.
   bool compare_color = false;
+  // The depth the comparison's framebuffers are cleared to.
+  float compare_clear_depth = 1.0f;
 
   DrawInput input() const { return {positions, attributes, attribute_count, indices}; }
 };
@@ -118,7 +124,7 @@ struct Call {
 Call decode_call(FuzzedDataProvider& in, uint32_t fb_samples) {
   Call c;
   c.compare = in.ConsumeBool();
-  c.primitive = c.compare ? Primitive::kTriangles : some_enum(in, Primitive::kPolygon);
+  c.primitive = some_enum(in, Primitive::kPolygon);
 
   PipelineState& p = c.pipeline;
   p.depth_test = in.ConsumeBool();
@@ -178,7 +184,7 @@ Call decode_call(FuzzedDataProvider& in, uint32_t fb_samples) {
     c.attributes.push_back(tame ? static_cast<float>(in.ConsumeIntegral<uint8_t>()) / 255.0f
                                 : hostile_float(in, 1.0f / 100.0f));
   }
-  if (!c.compare && in.ConsumeBool()) {
+  if (in.ConsumeBool()) {
     const size_t count = in.ConsumeIntegralInRange<size_t>(0, 60);
     for (size_t i = 0; i < count; ++i) {
       c.indices.push_back(
@@ -196,10 +202,47 @@ Call decode_call(FuzzedDataProvider& in, uint32_t fb_samples) {
   if (c.compare) {
     p.depth_test = true;
     p.depth_write = true;
-    p.depth_compare = CompareOp::kAlways;
-    // Triangle t at depth (t + 1) / 64 in window space, whatever clip-depth convention.
+    size_t per_primitive = c.positions.size() + 1;  // one depth for the whole draw
+    if (c.indices.empty()) {
+      if (c.primitive == Primitive::kTriangles) per_primitive = 3;
+      if (c.primitive == Primitive::kPoints) per_primitive = 1;
+      if (c.primitive == Primitive::kLines && c.line.topology == LineTopology::kList)
+        per_primitive = 2;
+    }
+    // Primitive t at depth level[t] / 64 in window space, whatever clip-depth convention. Under
+    // ALWAYS the last primitive over a sample wins, and the levels are 1, 2, 3, ... With tame
+    // vertices and a depth of its own for each primitive, any compare op, the levels distinct
+    // and in an order from the input. As no primitive covers a sample twice (a wide segment's
+    // or square point's two triangles share an edge), a primitive's depth is compared only with
+    // the clear depth and other levels, 1/128 or more from it, far beyond the engines' rounding,
+    // so both pass the same samples, and Hi-Z, its whole-tile test and the depth formats take
+    // part. One clear in four is a primitive's level instead, a tie: for tame vertices the
+    // window depth is exactly the level (d w and then (d w) / w are exact in float, and a flat
+    // plane rounds to its value), so the compare ops' ties and Hi-Z at equal bounds are
+    // compared too.
+    const CompareOp ops[] = {CompareOp::kAlways,       CompareOp::kLess,  CompareOp::kLessEqual,
+                             CompareOp::kGreater,      CompareOp::kEqual, CompareOp::kNotEqual,
+                             CompareOp::kGreaterEqual, CompareOp::kNever};
+    const bool own_depths = per_primitive <= c.positions.size();
+    p.depth_compare = tame && own_depths ? pick(in, ops) : CompareOp::kAlways;
+    std::array<uint32_t, 63> level;  // at most 48 primitives
+    for (uint32_t i = 0; i < level.size(); ++i)
+      level[i] = i + 1;
+    if (p.depth_compare != CompareOp::kAlways) {
+      const size_t primitives = (c.positions.size() + per_primitive - 1) / per_primitive;
+      for (size_t i = 0; i < primitives; ++i)
+        std::swap(level[i], level[in.ConsumeIntegralInRange<size_t>(i, level.size() - 1)]);
+      const size_t clear = in.ConsumeIntegralInRange<size_t>(0, 3);
+      if (clear < 3) {
+        const float clears[] = {1.0f, 0.0f, 0.5f + 1.0f / 128.0f};
+        c.compare_clear_depth = clears[clear];
+      } else {  // a tie with a primitive's level
+        const size_t tied = in.ConsumeIntegralInRange<size_t>(0, primitives - 1);
+        c.compare_clear_depth = static_cast<float>(level[tied]) / 64.0f;
+      }
+    }
     for (size_t v = 0; v < c.positions.size(); ++v) {
-      const float d = static_cast<float>(v / 3 + 1) / 64.0f;
+      const float d = static_cast<float>(level[v / per_primitive]) / 64.0f;
       Float4& pos = c.positions[v];
       pos.z = (p.clip_depth == ClipDepth::kNegativeOneToOne ? 2.0f * d - 1.0f : d) * pos.w;
     }
@@ -252,7 +295,8 @@ std::optional<Error> run(Renderer& r, Framebuffer& fb, const Call& call) {
   return std::nullopt;
 }
 
-// A sample's depth names the triangle that covered it last (depths are 1/64 apart).
+// A sample's depth names the primitive whose depth it holds, or the clear (the last over it under
+// ALWAYS, the compare's winner otherwise; distinct depths are 1/128 or more apart).
 void expect_same_coverage(const Contents& fast, const Contents& ref, const Counters& fc,
                           const Counters& rc, bool raster_counters) {
   if (fast.depth.size() != ref.depth.size()) broken("depth sizes differ");
@@ -363,7 +407,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (const Call& call : calls) {
     if (call.compare) {
       for (auto& fb : fbs) {
-        fb->clear_depth(1.0f);
+        fb->clear_depth(call.compare_clear_depth);
         fb->clear_color({0.1f, 0.2f, 0.3f, 1.0f});
       }
       renderers[0]->reset_counters();
@@ -409,8 +453,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     if (call.compare) {
       const Contents fast = snapshot(*fbs[0]), ref = snapshot(*fbs[1]);
+      // With Hi-Z (for the ordering compare ops) the fast engine does not count the covered
+      // samples of blocks it rejects.
+      const CompareOp op = call.pipeline.depth_compare;
+      const bool ordering = op == CompareOp::kLess || op == CompareOp::kLessEqual ||
+                            op == CompareOp::kGreater || op == CompareOp::kGreaterEqual;
+      const bool same_counts = options.raster_counters && !(options.hiz && ordering);
       expect_same_coverage(fast, ref, renderers[0]->counters(), renderers[1]->counters(),
-                           options.raster_counters);
+                           same_counts);
       if (call.compare_color) expect_same_color(fast, ref);
     }
   }
