@@ -1411,6 +1411,95 @@ TEST(FastEngine, HiZAcceptsNoBlockThatHoldsNaNDepth) {
   }
 }
 
+// Ties at Hi-Z's bounds: a depth buffer cleared to 0.5, part of it then written at 0.25, and
+// triangles of every size class at exactly 0.5 or 0.25 (flat planes at w = 1, 0.5 or 2, whose
+// window depth is the value exactly) under each ordering compare op. A block's bounds then equal
+// a triangle's depth, where Hi-Z must neither reject what LEQUAL or GEQUAL draws nor accept what
+// LESS or GREATER does not: the reference's depth bits and colour, with and without raster counters
+// (without them whole hidden triangles are dropped per tile), at one and four samples and in
+// each depth format.
+TEST(FastEngine, HiZAtTiedDepthsMatchesTheReference) {
+  std::mt19937 rng(71);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const float ws[] = {1.0f, 0.5f, 2.0f};
+  Scene first, second;
+  const auto add = [&](Scene& s, float cx, float cy, float r, float z, int i) {
+    float x[3], y[3], zs[3], w[3], c[3][4];
+    const float rot = u(rng) * 2.0f * std::numbers::pi_v<float>;
+    for (int k = 0; k < 3; ++k) {
+      const float a = rot + static_cast<float>(k) * 2.0f * std::numbers::pi_v<float> / 3.0f;
+      x[k] = cx + r * std::cos(a);
+      y[k] = cy + r * std::sin(a);
+      zs[k] = z;
+      w[k] = ws[(i + k) % 3];
+      for (int ch = 0; ch < 4; ++ch)
+        c[k][ch] = u(rng);
+    }
+    s.add(x, y, zs, w, c);
+  };
+  // The first draw: depth 0.25 over scattered patches, so that blocks hold 0.25 and 0.5.
+  for (int i = 0; i < 60; ++i)
+    add(first, u(rng) * 136.0f, u(rng) * 72.0f, 3.0f + 12.0f * u(rng), 0.25f, i);
+  // The second: radii from under a pixel to past the screen, at the two tied depths.
+  const float radii[] = {0.7f, 2.0f, 5.0f, 12.0f, 30.0f, 200.0f};
+  for (int i = 0; i < 600; ++i) {
+    add(second, u(rng) * 150.0f - 7.0f, u(rng) * 86.0f - 7.0f,
+        radii[i % 6] * (0.8f + 0.4f * u(rng)), i % 2 ? 0.5f : 0.25f, i);
+  }
+  const auto draw = [&](Backend backend, const Config& config, uint32_t samples, DepthFormat format,
+                        CompareOp op, bool counters) {
+    RendererOptions options;
+    options.backend = backend;
+    options.simd = config.target;
+    options.threads = config.threads;
+    options.raster_counters = counters;
+    Renderer renderer(options);
+    Framebuffer fb({136, 72, samples, ColorFormat::kRGBA8, format});
+    fb.clear_color({0.0f, 0.0f, 0.0f, 1.0f});
+    fb.clear_depth(0.5f);
+    PipelineState always;
+    always.depth_compare = CompareOp::kAlways;
+    renderer.draw(fb, always, {first.positions, first.colors, 4, {}});
+    PipelineState tested;
+    tested.depth_compare = op;
+    renderer.draw(fb, tested, {second.positions, second.colors, 4, {}});
+    return std::make_pair(fb.read_rgba8(), fb.read_sample_depth());
+  };
+  for (DepthFormat format : {DepthFormat::kFloat32, DepthFormat::kUnorm24, DepthFormat::kUnorm16}) {
+    for (uint32_t samples : {1u, 4u}) {
+      std::vector<uint8_t> strict;  // the reference's image under LESS, then GREATER
+      for (CompareOp op : {CompareOp::kLess, CompareOp::kLessEqual, CompareOp::kGreater,
+                           CompareOp::kGreaterEqual}) {
+        SCOPED_TRACE(testing::Message()
+                     << "depth format " << static_cast<int>(format) << ", samples " << samples
+                     << ", compare " << static_cast<int>(op));
+        const auto ref =
+            draw(Backend::kReference, {SimdTarget::kAuto, 1}, samples, format, op, true);
+        // The ties decide: the inclusive op draws what the strict one does not.
+        if (op == CompareOp::kLess || op == CompareOp::kGreater) {
+          strict = ref.first;
+        } else {
+          size_t differ = 0;
+          for (size_t i = 0; i < strict.size(); i += 4)
+            differ += std::memcmp(&strict[i], &ref.first[i], 4) != 0;
+          EXPECT_GT(differ, 2000u);
+        }
+        for_each_config([&](const Config& config) {
+          for (bool counters : {true, false}) {
+            const auto fast = draw(Backend::kFast, config, samples, format, op, counters);
+            int worst = 0;  // colour: within one 8-bit step, as for every triangle
+            for (size_t i = 0; i < ref.first.size(); ++i)
+              worst = std::max(worst, std::abs(int{fast.first[i]} - int{ref.first[i]}));
+            EXPECT_LE(worst, 1) << "counters " << counters;
+            EXPECT_EQ(0, std::memcmp(fast.second.data(), ref.second.data(), ref.second.size() * 4))
+                << "counters " << counters;
+          }
+        });
+      }
+    }
+  }
+}
+
 TEST(FastEngine, DepthOnlyDrawWritesNoColourAndCulledTrianglesDrawNothing) {
   Scene s = soup(900, 2000, 50.0f, false);
   s.pipeline.color_write = false;
