@@ -39,11 +39,6 @@ void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, siz
                 (static_cast<double>(y[i]) + 0.5 - sh.ay) * sh.ey) *
                sh.inv_len2;
     t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-    double tc = t;
-    if (sh.perspective) {
-      const double qa = (1.0 - t) * sh.inv_wa, qb = t * sh.inv_wb;
-      tc = qa + qb > 0.0 ? qb / (qa + qb) : t;
-    }
     out.depth[i] = static_cast<float>(sh.z + t * sh.dz);
     const uint32_t offset =
         pixel_offset(static_cast<uint32_t>(x[i]), static_cast<uint32_t>(y[i]), out.tiles_x);
@@ -62,6 +57,11 @@ void shade_scalar(const LineShading& sh, const int32_t* x, const int32_t* y, siz
     // No colour written (dst null): rgba[i] is not formed. A smooth line's pixel that is not
     // drawn reads no dst either.
     if (out.dst == nullptr || (sh.smooth && !(coverage > 0.0f))) continue;
+    double tc = t;  // the colour parameter (color_t)
+    if (sh.perspective) {
+      const double qa = (1.0 - t) * sh.inv_wa, qb = t * sh.inv_wb;
+      tc = qa + qb > 0.0 ? qb / (qa + qb) : t;
+    }
     float color[4];
     for (int c = 0; c < 4; ++c)
       color[c] = static_cast<float>(sh.color[c] + tc * sh.dcolor[c]);
