@@ -300,13 +300,20 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
 
   const double median = median_of(times);
   const double mtri_s = static_cast<double>(triangles) / (median * 1e-3) / 1e6;
+  // Every frame's time last (times_ms=a,b,...), in frame order, for tessera_workload_bench.
+  std::string frame_times;
+  for (const double t : times) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%s%.3f", frame_times.empty() ? "" : ",", t);
+    frame_times += buf;
+  }
   std::printf(
       "llvmpipe workload=%s threads=%u frames=%u median_ms=%.3f min_ms=%.3f max_ms=%.3f "
       "mtri_s=%.3f samples=%u lp_num_threads=%u lp_threads_seen=%u empty_ms=%.3f "
-      "triangles=%zu size=%ux%u\n",
+      "triangles=%zu size=%ux%u times_ms=%s\n",
       workload.c_str(), o.threads, o.frames, median, *std::min_element(times.begin(), times.end()),
       *std::max_element(times.begin(), times.end()), mtri_s, o.samples, lp_num_threads,
-      threads_seen, median_of(empty), triangles, width, height);
+      threads_seen, median_of(empty), triangles, width, height, frame_times.c_str());
   std::fflush(stdout);
 
   if (!o.write_png.empty()) {

@@ -1,47 +1,98 @@
 // Frame times of the standard workloads (TRI1 captures from ../shared/workloads/gen_scene.py,
-// see scripts/make-workloads.sh) for each backend, SIMD target, thread count and sample count.
-// Reports per frame: ms (Google Benchmark's time), Mtri/s and Gsamples/s (samples tested).
+// see scripts/make-workloads.sh) for each SIMD target, thread count and sample count, and of
+// Mesa's llvmpipe on the same captures when the build found OSMesa.
+// Reports per case: the median frame in ms (median_ms; Google Benchmark's own time column is
+// the mean), Mtri/s and Gsamples/s (samples covered) at that median. llvmpipe's cases carry
+// `speedup`, llvmpipe's median over Tessera's on the best target, and a table of those ratios
+// is printed after the run.
+//
+// llvmpipe reads LP_NUM_THREADS once per process, so each llvmpipe case runs
+// tessera_llvmpipe_bench (built beside this program) as a child process with the thread and
+// sample count, and reads its frame times back. Its frame count is $TESSERA_LLVMPIPE_FRAMES
+// (default 5): llvmpipe's slowest case here takes about 2 s a frame.
 //
 // Workloads are read from $TESSERA_WORKLOADS (default build/workloads); missing files are
 // skipped with a message.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <sstream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
 std::filesystem::path workload_dir() {
   const char* env = std::getenv("TESSERA_WORKLOADS");
   return env ? env : "build/workloads";
+}
+
+std::filesystem::path workload_path(const std::string& name) {
+  return workload_dir() / (name + ".tri");
 }
 
 const tessera::Capture* load(const std::string& name) {
   static std::map<std::string, tessera::Capture> cache;
   auto it = cache.find(name);
   if (it != cache.end()) return &it->second;
-  const std::filesystem::path path = workload_dir() / (name + ".tri");
+  const std::filesystem::path path = workload_path(name);
   if (!std::filesystem::exists(path)) return nullptr;
   return &cache.emplace(name, tessera::load_capture(path)).first->second;
 }
 
-void BM_Workload(benchmark::State& state, std::string name, tessera::Backend backend,
-                 tessera::SimdTarget target, uint32_t threads, uint32_t samples, bool color) {
+double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  if (n == 0) return 0.0;
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// What one case measured, for the ratios: keyed by workload, samples and threads.
+using CaseKey = std::tuple<std::string, uint32_t, uint32_t>;
+struct Measured {
+  double tessera_ms = 0.0;  // median frame on the best target, colour on
+  std::string tessera_target;
+  double llvmpipe_ms = 0.0;
+};
+std::map<CaseKey, Measured>& measured() {
+  static std::map<CaseKey, Measured> m;
+  return m;
+}
+
+void set_frame_counters(benchmark::State& state, double median_ms, double triangles,
+                        double samples_covered) {
+  state.counters["median_ms"] = median_ms;
+  if (median_ms <= 0.0) return;
+  state.counters["Mtri/s"] = triangles / (median_ms * 1e-3) / 1e6;
+  if (samples_covered > 0.0) {
+    state.counters["Gsamples/s"] = samples_covered / (median_ms * 1e-3) / 1e9;
+  }
+}
+
+void BM_Workload(benchmark::State& state, std::string name, tessera::SimdTarget target,
+                 std::string target_name, bool best, uint32_t threads, uint32_t samples,
+                 bool color) {
   const tessera::Capture* capture = load(name);
   if (capture == nullptr) {
-    state.SkipWithError(("workload " + name + ".tri not found in " + workload_dir().string() +
-                         " (run scripts/make-workloads.sh)")
-                            .c_str());
+    state.SkipWithError(
+        ("workload " + workload_path(name).string() + " not found (run scripts/make-workloads.sh)")
+            .c_str());
     return;
   }
   tessera::RendererOptions options;
-  options.backend = backend;
+  options.backend = tessera::Backend::kFast;
   options.simd = target;
   options.threads = threads;
   options.raster_counters = false;  // timed as users run it; samples are counted once below
@@ -64,18 +115,111 @@ void BM_Workload(benchmark::State& state, std::string name, tessera::Backend bac
     counter.draw(fb, pipeline, input);
     samples_covered = counter.counters().samples_covered;
   }
+  std::vector<double> frames;
   for (auto _ : state) {
+    const auto t0 = Clock::now();
     fb.clear_color({0, 0, 0, 1});
     fb.clear_depth(1.0f);
     renderer.draw(fb, pipeline, input);
+    frames.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
   }
-  const double frames = static_cast<double>(state.iterations());
-  const double triangles = static_cast<double>(capture->positions.size() / 3);
-  state.counters["Mtri/s"] =
-      benchmark::Counter(triangles * frames / 1e6, benchmark::Counter::kIsRate);
-  state.counters["Gsamples/s"] = benchmark::Counter(
-      static_cast<double>(samples_covered) * frames / 1e9, benchmark::Counter::kIsRate);
+  const double median = median_of(frames);
+  set_frame_counters(state, median, static_cast<double>(capture->positions.size() / 3),
+                     static_cast<double>(samples_covered));
+  if (best && color) {
+    Measured& m = measured()[{name, samples, threads}];
+    m.tessera_ms = median;
+    m.tessera_target = target_name;
+  }
 }
+
+#ifdef TESSERA_LLVMPIPE_BENCH
+// Runs tessera_llvmpipe_bench on one capture and returns its output line ("llvmpipe ..."), or
+// an error message in `error`.
+std::string run_llvmpipe(const std::filesystem::path& capture, uint32_t threads, uint32_t samples,
+                         uint32_t frames, std::string& error) {
+  const auto quote = [](const std::string& s) {
+    std::string q = "'";
+    for (const char c : s)
+      q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  };
+  const std::string command = quote(TESSERA_LLVMPIPE_BENCH) + " --threads " +
+                              std::to_string(threads) + " --samples " + std::to_string(samples) +
+                              " --frames " + std::to_string(frames) + " " +
+                              quote(capture.string()) + " 2>/dev/null";
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  if (!pipe) {
+    error = "cannot start " + std::string(TESSERA_LLVMPIPE_BENCH);
+    return "";
+  }
+  std::string line, found;
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, pipe.get()) != nullptr) {
+    line += buf;
+    if (!line.empty() && line.back() == '\n') {
+      if (line.rfind("llvmpipe ", 0) == 0) found = line;
+      line.clear();
+    }
+  }
+  const int status = pclose(pipe.release());
+  if (found.empty()) {
+    error = "tessera_llvmpipe_bench printed no result (exit status " + std::to_string(status) +
+            "; run it alone to see why)";
+  }
+  return found;
+}
+
+// The value of `key`=... in an output line, or "" when absent.
+std::string field(const std::string& line, const std::string& key) {
+  std::istringstream words(line);
+  std::string word;
+  while (words >> word) {
+    if (word.rfind(key + "=", 0) == 0) return word.substr(key.size() + 1);
+  }
+  return "";
+}
+
+void BM_Llvmpipe(benchmark::State& state, std::string name, uint32_t threads, uint32_t samples) {
+  const std::filesystem::path path = workload_path(name);
+  if (!std::filesystem::exists(path)) {
+    state.SkipWithError(
+        ("workload " + path.string() + " not found (run scripts/make-workloads.sh)").c_str());
+    return;
+  }
+  uint32_t frames = 5;
+  if (const char* env = std::getenv("TESSERA_LLVMPIPE_FRAMES")) {
+    frames = static_cast<uint32_t>(std::clamp(std::atol(env), 1L, 1000L));
+  }
+  std::string error;
+  const std::string line = run_llvmpipe(path, threads, samples, frames, error);
+  if (!error.empty()) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  if (field(line, "msaa") == "unavailable") {
+    state.SkipWithError(("llvmpipe offers no " + std::to_string(samples) + "x MSAA here").c_str());
+    return;
+  }
+  std::vector<double> times;
+  std::istringstream list(field(line, "times_ms"));
+  for (std::string t; std::getline(list, t, ',');)
+    times.push_back(std::atof(t.c_str()));
+  if (times.empty()) {
+    state.SkipWithError("tessera_llvmpipe_bench printed no frame times");
+    return;
+  }
+  // One iteration, timed as the median frame (its own frames ran in the child).
+  const double median = median_of(times);
+  for (auto _ : state)
+    state.SetIterationTime(median * 1e-3);
+  const double triangles = std::atof(field(line, "triangles").c_str());
+  set_frame_counters(state, median, triangles, 0.0);
+  Measured& m = measured()[{name, samples, threads}];
+  m.llvmpipe_ms = median;
+  if (m.tessera_ms > 0.0) state.counters["speedup"] = median / m.tessera_ms;
+}
+#endif
 
 void register_all() {
   const char* workloads[] = {"tiny", "small", "medium", "large", "huge", "grid"};
@@ -91,20 +235,50 @@ void register_all() {
   for (const char* w : workloads) {
     for (uint32_t samples : {1u, 4u}) {
       for (uint32_t threads : {1u, 2u}) {
+        bool best = true;  // the first available target is the one the engine picks itself
         for (const Target& t : targets) {
           if (!tessera::simd::is_available(t.target)) continue;
           for (bool color : {true, false}) {
             const std::string label =
                 std::string(w) + "/fast/" + t.name + "/threads:" + std::to_string(threads) +
                 "/samples:" + std::to_string(samples) + (color ? "" : "/depth_only");
-            benchmark::RegisterBenchmark(label.c_str(), BM_Workload, w, tessera::Backend::kFast,
-                                         t.target, threads, samples, color)
+            benchmark::RegisterBenchmark(label.c_str(), BM_Workload, w, t.target, t.name, best,
+                                         threads, samples, color)
                 ->Unit(benchmark::kMillisecond)
                 ->UseRealTime();
           }
+          best = false;
         }
+#ifdef TESSERA_LLVMPIPE_BENCH
+        // After Tessera's cases of the same workload, sample and thread count, for the ratio.
+        const std::string label = std::string(w) + "/llvmpipe/threads:" + std::to_string(threads) +
+                                  "/samples:" + std::to_string(samples);
+        benchmark::RegisterBenchmark(label.c_str(), BM_Llvmpipe, w, threads, samples)
+            ->Unit(benchmark::kMillisecond)
+            ->UseManualTime()
+            ->Iterations(1);
+#endif
       }
     }
+  }
+}
+
+// The ratios of the cases that ran both renderers, as a Markdown table.
+void print_ratios() {
+  bool header = false;
+  for (const auto& [key, m] : measured()) {
+    if (m.tessera_ms <= 0.0 || m.llvmpipe_ms <= 0.0) continue;
+    if (!header) {
+      std::printf(
+          "\nTessera (best target, colour) against llvmpipe, median ms per frame:\n\n"
+          "| workload | samples | threads | Tessera target | Tessera ms | llvmpipe ms | "
+          "llvmpipe / Tessera |\n| --- | ---: | ---: | --- | ---: | ---: | ---: |\n");
+      header = true;
+    }
+    const auto& [workload, samples, threads] = key;
+    std::printf("| %s | %u | %u | %s | %.1f | %.1f | %.2fx |\n", workload.c_str(), samples, threads,
+                m.tessera_target.c_str(), m.tessera_ms, m.llvmpipe_ms,
+                m.llvmpipe_ms / m.tessera_ms);
   }
 }
 
@@ -116,5 +290,6 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
+  print_ratios();
   return 0;
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Turns tessera_workload_bench's JSON output (--benchmark_out=FILE) into Markdown tables of
-milliseconds per frame: one table per sample count and colour mode, a row per workload, a
-column per SIMD target and thread count."""
+median milliseconds per frame: one table per sample count and colour mode, a row per workload,
+a column per SIMD target (and llvmpipe, in the colour tables, when the run drove it) and
+thread count."""
 import json
 import sys
 
@@ -15,14 +16,18 @@ def main(path):
         if r.get("run_type") == "aggregate" or "error_occurred" in r:
             continue
         parts = r["name"].split("/")
-        workload, target = parts[0], parts[2]
-        threads = parts[3].split(":")[1]
-        samples = parts[4].split(":")[1]
+        if parts[1] == "llvmpipe":  # workload/llvmpipe/threads:T/samples:S
+            workload, target, rest = parts[0], "llvmpipe", parts[2:]
+        else:  # workload/fast/target/threads:T/samples:S[/depth_only]
+            workload, target, rest = parts[0], parts[2], parts[3:]
+        threads = rest[0].split(":")[1]
+        samples = rest[1].split(":")[1]
         mode = "depth only" if "depth_only" in parts else "colour"
         column = f"{target} {threads}t"
         if column not in columns:
             columns.append(column)
-        cells[(samples, mode, workload, column)] = r["real_time"]
+        # The median frame (the harness's median_ms counter); older outputs had only the mean.
+        cells[(samples, mode, workload, column)] = r.get("median_ms", r["real_time"])
     for samples in ("1", "4"):
         for mode in ("colour", "depth only"):
             workloads = [w for w in ("tiny", "small", "medium", "large", "huge", "grid")
@@ -30,10 +35,11 @@ def main(path):
             if not workloads:
                 continue
             print(f"\n{samples} sample{'s' if samples != '1' else ''}, {mode}: ms per frame\n")
-            print("| workload | " + " | ".join(columns) + " |")
-            print("| --- |" + " ---: |" * len(columns))
+            here = [c for c in columns if any((samples, mode, w, c) in cells for w in workloads)]
+            print("| workload | " + " | ".join(here) + " |")
+            print("| --- |" + " ---: |" * len(here))
             for w in workloads:
-                row = [cells.get((samples, mode, w, c)) for c in columns]
+                row = [cells.get((samples, mode, w, c)) for c in here]
                 print(f"| {w} | " + " | ".join("" if v is None else f"{v:.1f}" for v in row) + " |")
 
 
