@@ -352,13 +352,14 @@ int run(const Options& o, const CLI::App& app) {
   if (o.stats) {
     const auto per = [frames](uint64_t v) { return static_cast<unsigned long long>(v / frames); };
     std::printf(
-        "per frame: submitted %llu, culled %llu, clipped %llu, rasterized %llu, bin references "
-        "%llu, bin passes %llu, blocks rejected %llu, accepted %llu, partial %llu, sub-blocks "
+        "per frame: submitted %llu, culled %llu, clipped %llu, rasterized %llu, binned %llu, bin "
+        "references %llu, bin passes %llu, blocks rejected %llu, accepted %llu, partial %llu, "
+        "sub-blocks "
         "rejected %llu, accepted %llu, partial %llu, Hi-Z rejected %llu, Hi-Z accepted %llu, "
         "samples covered %llu, passed %llu, pixels shaded %llu\n",
         per(c.triangles_submitted), per(c.triangles_culled), per(c.triangles_clipped),
-        per(c.triangles_rasterized), per(c.bin_references), per(c.bin_passes),
-        per(c.blocks_rejected), per(c.blocks_accepted), per(c.blocks_partial),
+        per(c.triangles_rasterized), per(c.triangles_binned), per(c.bin_references),
+        per(c.bin_passes), per(c.blocks_rejected), per(c.blocks_accepted), per(c.blocks_partial),
         per(c.subblocks_rejected), per(c.subblocks_accepted), per(c.subblocks_partial),
         per(c.hiz_rejected), per(c.hiz_accepted), per(c.samples_covered), per(c.samples_passed),
         per(c.pixels_shaded));

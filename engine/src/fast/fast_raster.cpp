@@ -362,6 +362,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       counters.triangles_clipped += cc.triangles_clipped;
       counters.triangles_rasterized += cc.triangles_rasterized;
       counters.bin_references += st.chunks[c].bins.references();
+      counters.triangles_binned += st.chunks[c].bins.triangles();
       kept_setups += st.chunks[c].bins.triangles();
       kept_references += st.chunks[c].bins.references();
     }
