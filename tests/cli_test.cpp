@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <sstream>
@@ -147,7 +148,61 @@ TEST(Cli, RepeatPrintsOneSummaryLineWithTheFrameCount) {
       dir, "--repeat 3 --width 64 --height 48 --samples 1 -o " + quoted(dir / "repeat.png"));
   ASSERT_TRUE(r.exited);
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(lines_starting_with(r.out, "frames=3 median_ms=").size(), 1u) << r.out;
+  const std::vector<std::string> lines = lines_starting_with(r.out, "frames=3 median_ms=");
+  ASSERT_EQ(lines.size(), 1u) << r.out;
+  double median = -1, min = -1, max = -1, mtri = -1;
+  ASSERT_EQ(std::sscanf(lines[0].c_str(), "frames=3 median_ms=%lf min_ms=%lf max_ms=%lf mtri_s=%lf",
+                        &median, &min, &max, &mtri),
+            4)
+      << lines[0];
+  EXPECT_GT(min, 0.0) << lines[0];
+  EXPECT_LE(min, median) << lines[0];
+  EXPECT_LE(median, max) << lines[0];
+  EXPECT_GT(mtri, 0.0) << lines[0];
+}
+
+TEST(Cli, TheReferenceBackendDrawsTheFastEnginesImageAndEachNamesItself) {
+  // Triangles of one colour each, at distinct depths, some overlapping: coverage and the
+  // depth test decide every pixel, and the two backends agree on both exactly.
+  TempDir dir;
+  Capture c;
+  c.width = 48;
+  c.height = 40;
+  const float tris[][6] = {{-0.9f, -0.8f, 0.7f, -0.6f, -0.2f, 0.9f},
+                           {-0.5f, 0.7f, 0.8f, 0.6f, 0.1f, -0.9f},
+                           {-1.0f, 0.0f, 0.3f, -0.95f, 0.9f, 0.95f},
+                           {0.2f, 0.2f, 0.25f, 0.21f, 0.22f, 0.3f}};
+  for (int t = 0; t < 4; ++t) {
+    const float z = 0.8f - 0.2f * static_cast<float>(t % 3);
+    for (int v = 0; v < 3; ++v) {
+      c.positions.push_back({tris[t][2 * v], tris[t][2 * v + 1], z, 1.0f});
+      const float rgba[4] = {t == 0 ? 1.0f : 0.0f, t == 1 ? 1.0f : 0.0f, t >= 2 ? 1.0f : 0.0f,
+                             1.0f};
+      c.colors.insert(c.colors.end(), rgba, rgba + 4);
+    }
+  }
+  save_capture(dir / "tris.tri", c);
+  const RunResult fast =
+      run_render(dir, quoted(dir / "tris.tri") + " -s 4 -o " + quoted(dir / "fast.png"));
+  const RunResult reference = run_render(
+      dir, quoted(dir / "tris.tri") + " -s 4 --backend reference -o " + quoted(dir / "ref.png"));
+  ASSERT_TRUE(fast.exited && reference.exited);
+  ASSERT_EQ(fast.exit_code, 0) << fast.err;
+  ASSERT_EQ(reference.exit_code, 0) << reference.err;
+  EXPECT_NE(fast.out.find("backend fast"), std::string::npos) << fast.out;
+  EXPECT_NE(reference.out.find("backend reference"), std::string::npos) << reference.out;
+  const Image a = read_image(dir / "fast.png"), b = read_image(dir / "ref.png");
+  ASSERT_EQ(a.width, 48);
+  ASSERT_EQ(b.width, 48);
+  int drawn = 0;
+  for (int y = 0; y < 40; ++y) {
+    for (int x = 0; x < 48; ++x) {
+      for (int k = 0; k < 4; ++k)
+        ASSERT_EQ(a.at(x, y)[k], b.at(x, y)[k]) << x << "," << y << " channel " << k;
+      drawn += a.at(x, y)[0] + a.at(x, y)[1] + a.at(x, y)[2] > 0.0f;
+    }
+  }
+  EXPECT_GT(drawn, 48 * 40 / 2);
 }
 
 TEST(Cli, DepthOptionWritesTheDepthBufferAsAnExr) {

@@ -1,5 +1,5 @@
 // The fast engine against the reference rasterizer, for every SIMD target this machine runs
-// and for 1, 2 and 3 threads: coverage identical bit for bit, depth within kDepthUlps, colour
+// and for 1, 2 and 3 threads: coverage identical bit for bit, depth within kDepthTolerance, colour
 // within one 8-bit step, and images byte-identical across thread counts, runs and targets.
 #include <gtest/gtest.h>
 
@@ -295,6 +295,7 @@ TEST(FastEngine, TrianglesBetweenSamplesAreRasterizedWithoutBinning) {
         EXPECT_EQ(fast.counters.triangles_rasterized, 1u);
         EXPECT_EQ(fast.counters.triangles_culled, 0u);
         EXPECT_EQ(fast.counters.bin_references, samples == 1 ? 0u : 1u);
+        EXPECT_EQ(fast.counters.triangles_binned, samples == 1 ? 0u : 1u);
       });
     }
   }
@@ -760,29 +761,37 @@ TEST(FastEngine, CoverageMatchesReferenceOnLongSlivers) {
 }
 
 TEST(FastEngine, CoverageMatchesReferenceAtAndPastTheThirtyTwoBitStepLimit) {
-  // Edge steps |a| + |b| just below, at and above narrow_edge_limit (4096 px at 8 bits): the
-  // triangles reach far into the guard band while crossing the small screen.
-  Scene s;
-  const float limit_px = static_cast<float>(fast::narrow_edge_limit(8)) / 256.0f;
-  int i = 0;
-  for (float span :
-       {limit_px - 1.0f, limit_px - 1.0f / 256.0f, limit_px, limit_px + 3.0f, 3.0f * limit_px}) {
-    for (float offset : {-0.3f, 0.0f, 17.25f, 40.5f}) {
-      const float x[3] = {68.0f - span / 2 + offset, 68.0f + span / 2 + offset, 70.0f};
-      const float y[3] = {10.0f + offset / 4, 30.0f, 60.0f - offset / 8};
-      const float z = static_cast<float>(++i) / 32768.0f;
-      const float zz[3] = {z, z, z}, w[3] = {1, 1, 1}, c[3][4] = {};
-      s.add(x, y, zz, w, c);
+  // Edge steps |a| + |b| just below, at and above narrow_edge_limit, 2^(28 - 2 bits) px: 4096
+  // px at 8 subpixel bits, 16384 at 7. (At 6 bits and fewer the limit, 65536 px and more, lies
+  // past the guard band, where clipping keeps every edge inside it.) The triangles reach far
+  // into the guard band, or past it, while crossing the small screen.
+  for (uint32_t bits : {8u, 7u}) {
+    Scene s;
+    s.pipeline.subpixel_bits = bits;
+    const float limit_px =
+        static_cast<float>(fast::narrow_edge_limit(bits)) / static_cast<float>(1u << bits);
+    const float unit = 1.0f / static_cast<float>(1u << bits);
+    int i = 0;
+    for (float span :
+         {limit_px - 1.0f, limit_px - unit, limit_px, limit_px + 3.0f, 3.0f * limit_px}) {
+      for (float offset : {-0.3f, 0.0f, 17.25f, 40.5f}) {
+        const float x[3] = {68.0f - span / 2 + offset, 68.0f + span / 2 + offset, 70.0f};
+        const float y[3] = {10.0f + offset / 4, 30.0f, 60.0f - offset / 8};
+        const float z = static_cast<float>(++i) / 32768.0f;
+        const float zz[3] = {z, z, z}, w[3] = {1, 1, 1}, c[3][4] = {};
+        s.add(x, y, zz, w, c);
+      }
     }
-  }
-  s.pipeline.depth_compare = CompareOp::kAlways;
-  for (uint32_t samples : {1u, 8u}) {
-    s.samples = samples;
-    const Result ref = render(s, Backend::kReference);
-    for_each_config([&](const Config& config) {
-      expect_same_coverage(render(s, Backend::kFast, config), ref,
-                           std::to_string(samples) + " samples");
-    });
+    s.pipeline.depth_compare = CompareOp::kAlways;
+    for (uint32_t samples : {1u, 8u}) {
+      s.samples = samples;
+      const Result ref = render(s, Backend::kReference);
+      for_each_config([&](const Config& config) {
+        expect_same_coverage(
+            render(s, Backend::kFast, config), ref,
+            std::to_string(bits) + " bits, " + std::to_string(samples) + " samples");
+      });
+    }
   }
 }
 
@@ -1361,6 +1370,41 @@ TEST(FastEngine, HiZRejectsHiddenBlocksWithoutChangingTheImage) {
   }
 }
 
+// Two screen-filling quads, the far one first, each in front of everything drawn before it:
+// every block a quad's triangle covers whole is accepted by Hi-Z (written without its depth
+// read), and the image is the reference's.
+TEST(FastEngine, HiZAcceptsBlocksCoveredInFrontOfEverythingWithoutChangingTheImage) {
+  Scene s;
+  const float w[3] = {1, 1, 1};
+  // One colour a quad (as the depth): the two backends' bytes are then equal, not within a step.
+  const float far_c[3][4] = {{0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 1, 1}};
+  const float near_c[3][4] = {{1, 1, 0, 1}, {1, 1, 0, 1}, {1, 1, 0, 1}};
+  for (float z : {0.9f, 0.1f}) {
+    const float zz[3] = {z, z, z};
+    const auto& c = z > 0.5f ? far_c : near_c;
+    s.add({0, 136, 0}, {0, 0, 72}, zz, w, c);
+    s.add({136, 136, 0}, {0, 72, 72}, zz, w, c);
+  }
+  // 17 x 9 blocks; a quad's diagonal crosses 17 + 9 - 1 of them (17 and 9 have no common
+  // factor, so it meets no block corner inside the screen), and every other block lies inside
+  // one of its triangles: 128 accepted per quad.
+  constexpr uint64_t kAccepted = 2 * (17 * 9 - (17 + 9 - 1));
+  for (uint32_t samples : {1u, 4u}) {
+    s.samples = samples;
+    const Result ref = render(s, Backend::kReference);
+    for_each_config([&](const Config& config) {
+      const Result fast = render(s, Backend::kFast, config);
+      EXPECT_EQ(fast.counters.hiz_accepted, kAccepted) << config_name(config);
+      EXPECT_EQ(fast.counters.hiz_rejected, 0u) << config_name(config);
+      EXPECT_EQ(fast.rgba8, ref.rgba8) << config_name(config);
+      EXPECT_EQ(0, std::memcmp(fast.depth.data(), ref.depth.data(), ref.depth.size() * 4));
+      const Result plain = render(s, Backend::kFast, config, kDefaultBinMemoryBudget, true, false);
+      EXPECT_EQ(plain.counters.hiz_accepted, 0u);
+      EXPECT_EQ(plain.rgba8, fast.rgba8);
+    });
+  }
+}
+
 // A depth buffer cleared to NaN, one block of it then written in part: a NaN sample fails
 // every ordering compare, so a triangle in front of the written samples must not be accepted
 // over the whole block by Hi-Z (whose bounds are computed from the block's samples).
@@ -1545,6 +1589,59 @@ TEST(FastEngineOptions, ForcingAnUnsupportedOrUnknownTargetIsAnError) {
   RendererOptions tiny_budget;
   tiny_budget.bin_memory_budget = 1000;
   EXPECT_THROW(Renderer{tiny_budget}, Error);
+}
+
+// TESSERA_SIMD forces the target of renderers left at SimdTarget::kAuto; a target named in
+// RendererOptions::simd wins over it; an unknown or unsupported value is an error naming it.
+TEST(FastEngineOptions, TheTesseraSimdVariableForcesTheTargetOfAutomaticRenderers) {
+  const char* saved = std::getenv("TESSERA_SIMD");
+  const std::string old_value = saved ? saved : "";
+  RendererOptions automatic;
+  automatic.backend = Backend::kFast;
+  struct Named {
+    SimdTarget target;
+    const char* name;
+  };
+  int forced = 0;
+  for (const Named& n : {Named{SimdTarget::kScalar, "scalar"}, Named{SimdTarget::kSSE4, "sse4"},
+                         Named{SimdTarget::kAVX2, "avx2"}, Named{SimdTarget::kAVX512, "avx512"},
+                         Named{SimdTarget::kNEON, "neon"}}) {
+    ASSERT_EQ(setenv("TESSERA_SIMD", n.name, 1), 0);
+    if (simd::is_available(n.target)) {
+      EXPECT_EQ(std::string(Renderer(automatic).simd_target()), n.name);
+      ++forced;
+    } else {
+      try {
+        Renderer r(automatic);
+        ADD_FAILURE() << "TESSERA_SIMD=" << n.name << " accepted on a CPU without it";
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(std::string("TESSERA_SIMD=") + n.name),
+                  std::string::npos)
+            << e.what();
+      }
+    }
+  }
+  EXPECT_GE(forced, 1);  // scalar at least
+  ASSERT_EQ(setenv("TESSERA_SIMD", "scalar", 1), 0);
+  RendererOptions named = automatic;
+  const SimdTarget best =
+      simd::is_available(SimdTarget::kAVX2) ? SimdTarget::kAVX2 : SimdTarget::kScalar;
+  named.simd = best;
+  EXPECT_EQ(std::string(Renderer(named).simd_target()),
+            best == SimdTarget::kAVX2 ? "avx2" : "scalar");
+  ASSERT_EQ(setenv("TESSERA_SIMD", "avx1024", 1), 0);
+  try {
+    Renderer r(automatic);
+    ADD_FAILURE() << "TESSERA_SIMD=avx1024 accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
+    EXPECT_NE(std::string(e.what()).find("TESSERA_SIMD=avx1024"), std::string::npos) << e.what();
+  }
+  if (saved) {
+    setenv("TESSERA_SIMD", old_value.c_str(), 1);
+  } else {
+    unsetenv("TESSERA_SIMD");
+  }
 }
 
 }  // namespace
