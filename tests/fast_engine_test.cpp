@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -760,6 +761,24 @@ TEST(FastEngine, CoverageMatchesReferenceOnLongSlivers) {
   });
 }
 
+// Triangles whose first edge spans `span` px across the small screen (far into the guard band
+// for spans of thousands of pixels), shifted by each offset, each at a depth of its own, drawn
+// with CompareOp::kAlways: a sample's depth names the last triangle that covered it.
+void add_spanning_triangles(Scene& s, std::initializer_list<float> spans,
+                            std::initializer_list<float> offsets) {
+  int i = 0;
+  for (float span : spans) {
+    for (float offset : offsets) {
+      const float x[3] = {68.0f - span / 2 + offset, 68.0f + span / 2 + offset, 70.0f};
+      const float y[3] = {10.0f + offset / 4, 30.0f, 60.0f - offset / 8};
+      const float z = static_cast<float>(++i) / 32768.0f;
+      const float zz[3] = {z, z, z}, w[3] = {1, 1, 1}, c[3][4] = {};
+      s.add(x, y, zz, w, c);
+    }
+  }
+  s.pipeline.depth_compare = CompareOp::kAlways;
+}
+
 TEST(FastEngine, CoverageMatchesReferenceAtAndPastTheThirtyTwoBitStepLimit) {
   // Edge steps |a| + |b| just below, at and above narrow_edge_limit, 2^(28 - 2 bits) px: 4096
   // px at 8 subpixel bits, 16384 at 7. (At 6 bits and fewer the limit, 65536 px and more, lies
@@ -771,18 +790,9 @@ TEST(FastEngine, CoverageMatchesReferenceAtAndPastTheThirtyTwoBitStepLimit) {
     const float limit_px =
         static_cast<float>(fast::narrow_edge_limit(bits)) / static_cast<float>(1u << bits);
     const float unit = 1.0f / static_cast<float>(1u << bits);
-    int i = 0;
-    for (float span :
-         {limit_px - 1.0f, limit_px - unit, limit_px, limit_px + 3.0f, 3.0f * limit_px}) {
-      for (float offset : {-0.3f, 0.0f, 17.25f, 40.5f}) {
-        const float x[3] = {68.0f - span / 2 + offset, 68.0f + span / 2 + offset, 70.0f};
-        const float y[3] = {10.0f + offset / 4, 30.0f, 60.0f - offset / 8};
-        const float z = static_cast<float>(++i) / 32768.0f;
-        const float zz[3] = {z, z, z}, w[3] = {1, 1, 1}, c[3][4] = {};
-        s.add(x, y, zz, w, c);
-      }
-    }
-    s.pipeline.depth_compare = CompareOp::kAlways;
+    add_spanning_triangles(
+        s, {limit_px - 1.0f, limit_px - unit, limit_px, limit_px + 3.0f, 3.0f * limit_px},
+        {-0.3f, 0.0f, 17.25f, 40.5f});
     for (uint32_t samples : {1u, 8u}) {
       s.samples = samples;
       const Result ref = render(s, Backend::kReference);
@@ -1103,17 +1113,8 @@ TEST(FastEngine, EveryBlockSizeMatchesTheReferenceCoverage) {
   }
   Scene wide;
   const float limit_px = static_cast<float>(fast::narrow_edge_limit(8)) / 256.0f;
-  int i = 0;
-  for (float span : {limit_px - 1.0f, limit_px + 3.0f, 3.0f * limit_px}) {
-    for (float offset : {-0.3f, 17.25f, 40.5f}) {
-      const float x[3] = {68.0f - span / 2 + offset, 68.0f + span / 2 + offset, 70.0f};
-      const float y[3] = {10.0f + offset / 4, 30.0f, 60.0f - offset / 8};
-      const float z = static_cast<float>(++i) / 32768.0f;
-      const float zz[3] = {z, z, z}, w[3] = {1, 1, 1}, c[3][4] = {};
-      wide.add(x, y, zz, w, c);
-    }
-  }
-  wide.pipeline.depth_compare = CompareOp::kAlways;
+  add_spanning_triangles(wide, {limit_px - 1.0f, limit_px + 3.0f, 3.0f * limit_px},
+                         {-0.3f, 17.25f, 40.5f});
   wide.samples = 8;
   scenes.push_back(wide);
   for (size_t n = 0; n < scenes.size(); ++n) {
