@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <initializer_list>
 #include <limits>
@@ -761,16 +762,20 @@ TEST(FastEngine, CoverageMatchesReferenceOnLongSlivers) {
   });
 }
 
-// Triangles whose first edge spans `span` px across the small screen (far into the guard band
-// for spans of thousands of pixels), shifted by each offset, each at a depth of its own, drawn
-// with CompareOp::kAlways: a sample's depth names the last triangle that covered it.
+// Triangles whose first edge has |dx| + |dy| = `span` px (the sum that narrow_edge_limit
+// bounds), across the small screen and far into the guard band, or past it, for spans of
+// thousands of pixels: level, or with `diagonal` at 45 degrees (a span twice as long inside the
+// band). Each is shifted by each offset and has a depth of its own, drawn with
+// CompareOp::kAlways: a sample's depth names the last triangle that covered it.
 void add_spanning_triangles(Scene& s, std::initializer_list<float> spans,
-                            std::initializer_list<float> offsets) {
-  int i = 0;
+                            std::initializer_list<float> offsets, bool diagonal = false) {
+  int i = static_cast<int>(s.positions.size() / 3);
   for (float span : spans) {
     for (float offset : offsets) {
-      const float x[3] = {68.0f - span / 2 + offset, 68.0f + span / 2 + offset, 70.0f};
-      const float y[3] = {10.0f + offset / 4, 30.0f, 60.0f - offset / 8};
+      const float h = diagonal ? span / 4 : span / 2, v = diagonal ? span / 4 : 0.0f;
+      const float x[3] = {68.0f - h + offset, 68.0f + h + offset, 70.0f};
+      const float y[3] = {diagonal ? 36.0f - v : 10.0f + offset / 4, diagonal ? 36.0f + v : 30.0f,
+                          60.0f - offset / 8};
       const float z = static_cast<float>(++i) / 32768.0f;
       const float zz[3] = {z, z, z}, w[3] = {1, 1, 1}, c[3][4] = {};
       s.add(x, y, zz, w, c);
@@ -781,18 +786,21 @@ void add_spanning_triangles(Scene& s, std::initializer_list<float> spans,
 
 TEST(FastEngine, CoverageMatchesReferenceAtAndPastTheThirtyTwoBitStepLimit) {
   // Edge steps |a| + |b| just below, at and above narrow_edge_limit, 2^(28 - 2 bits) px: 4096
-  // px at 8 subpixel bits, 16384 at 7. (At 6 bits and fewer the limit, 65536 px and more, lies
-  // past the guard band, where clipping keeps every edge inside it.) The triangles reach far
-  // into the guard band, or past it, while crossing the small screen.
-  for (uint32_t bits : {8u, 7u}) {
+  // px at 8 subpixel bits, 16384 at 7, 65536 at 6, by level and by diagonal edges. Inside the
+  // guard band (32768 px each way from the screen's centre) |dx| + |dy| reaches 131072 px on a
+  // diagonal: 6 bits is the last precision whose limit an unclipped edge can reach. Spans past
+  // the band are clipped first.
+  for (uint32_t bits : {8u, 7u, 6u}) {
     Scene s;
     s.pipeline.subpixel_bits = bits;
     const float limit_px =
         static_cast<float>(fast::narrow_edge_limit(bits)) / static_cast<float>(1u << bits);
     const float unit = 1.0f / static_cast<float>(1u << bits);
-    add_spanning_triangles(
-        s, {limit_px - 1.0f, limit_px - unit, limit_px, limit_px + 3.0f, 3.0f * limit_px},
-        {-0.3f, 0.0f, 17.25f, 40.5f});
+    for (bool diagonal : {false, true}) {
+      add_spanning_triangles(
+          s, {limit_px - 1.0f, limit_px - unit, limit_px, limit_px + 3.0f, 3.0f * limit_px},
+          {-0.3f, 0.0f, 17.25f, 40.5f}, diagonal);
+    }
     for (uint32_t samples : {1u, 8u}) {
       s.samples = samples;
       const Result ref = render(s, Backend::kReference);
@@ -1166,6 +1174,9 @@ TEST(FastEngine, SmallBinBudgetRendersInPassesWithTheSameImage) {
     EXPECT_EQ(passes.rgba8, whole.rgba8);
     EXPECT_EQ(0, std::memcmp(passes.depth.data(), whole.depth.data(), whole.depth.size() * 4));
     EXPECT_EQ(passes.counters.samples_passed, whole.counters.samples_passed);
+    // Each triangle is binned in exactly one pass.
+    EXPECT_EQ(passes.counters.triangles_binned, whole.counters.triangles_binned);
+    EXPECT_GT(whole.counters.triangles_binned, 0u);
   });
 }
 
@@ -1188,6 +1199,7 @@ TEST(FastEngine, RasterCountersOffDrawTheSameImageAndCountNoRasterWork) {
     // The triangle and bin counts are kept either way.
     EXPECT_EQ(c.triangles_rasterized, counted.counters.triangles_rasterized);
     EXPECT_EQ(c.bin_references, counted.counters.bin_references);
+    EXPECT_EQ(c.triangles_binned, counted.counters.triangles_binned);
   });
   // Triangles of ~80 px sides over one another, through the general path, whose kernels
   // without counters drop a triangle that Hi-Z finds hidden at every block of its box in a
@@ -1594,23 +1606,51 @@ TEST(FastEngineOptions, ForcingAnUnsupportedOrUnknownTargetIsAnError) {
 
 // TESSERA_SIMD forces the target of renderers left at SimdTarget::kAuto; a target named in
 // RendererOptions::simd wins over it; an unknown or unsupported value is an error naming it.
+// Sets TESSERA_SIMD for its lifetime and puts back what was there, also when a test fails.
+class SimdVariable {
+ public:
+  SimdVariable() : had_(std::getenv("TESSERA_SIMD") != nullptr) {
+    if (had_) old_ = std::getenv("TESSERA_SIMD");
+  }
+  ~SimdVariable() {
+    if (had_) {
+      setenv("TESSERA_SIMD", old_.c_str(), 1);
+    } else {
+      unsetenv("TESSERA_SIMD");
+    }
+  }
+  SimdVariable(const SimdVariable&) = delete;
+  SimdVariable& operator=(const SimdVariable&) = delete;
+  void set(const char* value) { ASSERT_EQ(setenv("TESSERA_SIMD", value, 1), 0); }
+
+ private:
+  bool had_;
+  std::string old_;
+};
+
+// TESSERA_SIMD forces the target of renderers left at SimdTarget::kAuto; a target named in
+// RendererOptions::simd wins over it; an unknown or unsupported value is an error naming it.
 TEST(FastEngineOptions, TheTesseraSimdVariableForcesTheTargetOfAutomaticRenderers) {
-  const char* saved = std::getenv("TESSERA_SIMD");
-  const std::string old_value = saved ? saved : "";
+  SimdVariable variable;
   RendererOptions automatic;
   automatic.backend = Backend::kFast;
   struct Named {
     SimdTarget target;
     const char* name;
   };
+  const Named named_targets[] = {{SimdTarget::kScalar, "scalar"},
+                                 {SimdTarget::kSSE4, "sse4"},
+                                 {SimdTarget::kAVX2, "avx2"},
+                                 {SimdTarget::kAVX512, "avx512"},
+                                 {SimdTarget::kNEON, "neon"}};
   int forced = 0;
-  for (const Named& n : {Named{SimdTarget::kScalar, "scalar"}, Named{SimdTarget::kSSE4, "sse4"},
-                         Named{SimdTarget::kAVX2, "avx2"}, Named{SimdTarget::kAVX512, "avx512"},
-                         Named{SimdTarget::kNEON, "neon"}}) {
-    ASSERT_EQ(setenv("TESSERA_SIMD", n.name, 1), 0);
+  const Named* vector_target = nullptr;  // one available target other than scalar
+  for (const Named& n : named_targets) {
+    variable.set(n.name);
     if (simd::is_available(n.target)) {
       EXPECT_EQ(std::string(Renderer(automatic).simd_target()), n.name);
       ++forced;
+      if (n.target != SimdTarget::kScalar) vector_target = &n;
     } else {
       try {
         Renderer r(automatic);
@@ -1623,25 +1663,19 @@ TEST(FastEngineOptions, TheTesseraSimdVariableForcesTheTargetOfAutomaticRenderer
     }
   }
   EXPECT_GE(forced, 1);  // scalar at least
-  ASSERT_EQ(setenv("TESSERA_SIMD", "scalar", 1), 0);
-  RendererOptions named = automatic;
-  const SimdTarget best =
-      simd::is_available(SimdTarget::kAVX2) ? SimdTarget::kAVX2 : SimdTarget::kScalar;
-  named.simd = best;
-  EXPECT_EQ(std::string(Renderer(named).simd_target()),
-            best == SimdTarget::kAVX2 ? "avx2" : "scalar");
-  ASSERT_EQ(setenv("TESSERA_SIMD", "avx1024", 1), 0);
+  if (vector_target != nullptr) {
+    variable.set("scalar");
+    RendererOptions named = automatic;
+    named.simd = vector_target->target;
+    EXPECT_EQ(std::string(Renderer(named).simd_target()), vector_target->name);
+  }
+  variable.set("avx1024");
   try {
     Renderer r(automatic);
     ADD_FAILURE() << "TESSERA_SIMD=avx1024 accepted";
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
     EXPECT_NE(std::string(e.what()).find("TESSERA_SIMD=avx1024"), std::string::npos) << e.what();
-  }
-  if (saved) {
-    setenv("TESSERA_SIMD", old_value.c_str(), 1);
-  } else {
-    unsetenv("TESSERA_SIMD");
   }
 }
 

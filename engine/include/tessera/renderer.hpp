@@ -103,10 +103,13 @@ struct Counters {
   uint64_t triangles_invalid = 0;
   uint64_t triangles_clipped = 0;  // crossed a clip plane and were cut
   uint64_t triangles_rasterized = 0;
-  // Fast engine: rasterized triangles recorded in at least one tile's bin. The others cover
-  // no sample (found at setup) and leave there. Each pass counts the triangles it binned.
+  // Fast engine: rasterized triangles (pieces after clipping) recorded in a tile's bin, each
+  // in exactly one pass. The others leave at setup: their box holds no sample, or, small
+  // enough for the setup to test its samples, they cover none (a binned triangle may still
+  // cover no sample).
   uint64_t triangles_binned = 0;
-  uint64_t bin_references = 0;   // (triangle, tile) pairs binned
+  // (primitive, tile) pairs binned: triangles', and the fast engine's lines' and points'.
+  uint64_t bin_references = 0;
   uint64_t bin_passes = 0;       // rasterization passes (the bin budget, the pass size)
   uint64_t blocks_rejected = 0;  // 8x8 blocks of a triangle's tiles outside an edge
   uint64_t blocks_accepted = 0;  // blocks fully inside all three edges
