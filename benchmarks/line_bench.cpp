@@ -10,10 +10,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "benchmarks/frame_times.hpp"
 #include "benchmarks/random_lines.hpp"
 #include "tessera/tessera.hpp"
 
 namespace {
+
+using tessera::bench::median_of;
 
 using Clock = std::chrono::steady_clock;
 
@@ -46,12 +49,6 @@ std::vector<Variant> variants() {
   v.push_back({"diamond_depth", {}, true});
   v.push_back({"smooth_depth", s, true});
   return v;
-}
-
-double median_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace

@@ -22,9 +22,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "benchmarks/frame_times.hpp"
 #include "benchmarks/random_lines.hpp"
 
 namespace {
+
+using tessera::bench::median_of;
 
 using Clock = std::chrono::steady_clock;
 constexpr const char* kReexecMarker = "TESSERA_LLVMPIPE_REEXEC";
@@ -51,12 +54,6 @@ void ensure_llvmpipe_environment(uint32_t threads, char** argv) {
   std::fflush(nullptr);
   execv("/proc/self/exe", argv);
   fail(std::string("execv /proc/self/exe: ") + std::strerror(errno));
-}
-
-double median_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 struct ContextDeleter {

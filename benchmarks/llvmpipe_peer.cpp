@@ -26,9 +26,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "benchmarks/frame_times.hpp"
 #include "tessera/tessera.hpp"
 
 namespace {
+
+using tessera::bench::median_of;
 
 using Clock = std::chrono::steady_clock;
 
@@ -193,12 +196,6 @@ void set_capture_state(uint32_t width, uint32_t height) {
   glShadeModel(GL_SMOOTH);
   glHint(GL_PERSPECTIVE_CORRECTION_HINT, GL_NICEST);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-}
-
-double median_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 void check_gl(const char* what) {

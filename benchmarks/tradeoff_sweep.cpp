@@ -24,6 +24,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "benchmarks/frame_times.hpp"
 #include "tessera/tessera.hpp"
 
 namespace {
@@ -148,11 +149,6 @@ struct Workload {
   size_t triangles = 0;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 void draw_workload(tessera::Renderer& renderer, tessera::Framebuffer& fb, const Settings& s,
                    const Workload& w) {
   if (w.capture) {
@@ -187,7 +183,7 @@ double time_frames(const Settings& s, const Workload& w, uint32_t threads, int f
     draw_workload(renderer, fb, timed, w);
     if (f >= 0) ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
   }
-  return median(ms);
+  return tessera::bench::median_of(ms);
 }
 
 // --- Edge quality ---------------------------------------------------------------------------

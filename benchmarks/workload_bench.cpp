@@ -30,10 +30,13 @@
 #include <tuple>
 #include <vector>
 
+#include "benchmarks/frame_times.hpp"
 #include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 
 namespace {
+
+using tessera::bench::median_of;
 
 using Clock = std::chrono::steady_clock;
 
@@ -53,13 +56,6 @@ const tessera::Capture* load(const std::string& name) {
   const std::filesystem::path path = workload_path(name);
   if (!std::filesystem::exists(path)) return nullptr;
   return &cache.emplace(name, tessera::load_capture(path)).first->second;
-}
-
-double median_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  if (n == 0) return 0.0;
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 // What one case measured, for the ratios: keyed by workload, samples and threads.
@@ -254,12 +250,20 @@ void register_all() {
   } catch (const tessera::Error& e) {
     std::fprintf(stderr, "tessera_workload_bench: %s\n", e.what());
   }
+  struct Available {
+    Target target;
+    bool best;  // the automatic one
+  };
+  std::vector<Available> available;
+  for (const Target& t : targets) {
+    if (tessera::simd::is_available(t.target)) {
+      available.push_back({t, tessera::simd::resolve_target(t.target) == automatic});
+    }
+  }
   for (const char* w : workloads) {
     for (uint32_t samples : {1u, 4u}) {
       for (uint32_t threads : {1u, 2u}) {
-        for (const Target& t : targets) {
-          if (!tessera::simd::is_available(t.target)) continue;
-          const bool best = tessera::simd::resolve_target(t.target) == automatic;
+        for (const auto& [t, best] : available) {
           for (bool color : {true, false}) {
             const std::string label =
                 std::string(w) + "/fast/" + t.name + "/threads:" + std::to_string(threads) +

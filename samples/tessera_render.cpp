@@ -354,8 +354,8 @@ int run(const Options& o, const CLI::App& app) {
     std::printf(
         "per frame: submitted %llu, culled %llu, clipped %llu, rasterized %llu, binned %llu, bin "
         "references %llu, bin passes %llu, blocks rejected %llu, accepted %llu, partial %llu, "
-        "sub-blocks "
-        "rejected %llu, accepted %llu, partial %llu, Hi-Z rejected %llu, Hi-Z accepted %llu, "
+        "sub-blocks rejected %llu, accepted %llu, partial %llu, Hi-Z rejected %llu, Hi-Z "
+        "accepted %llu, "
         "samples covered %llu, passed %llu, pixels shaded %llu\n",
         per(c.triangles_submitted), per(c.triangles_culled), per(c.triangles_clipped),
         per(c.triangles_rasterized), per(c.triangles_binned), per(c.bin_references),

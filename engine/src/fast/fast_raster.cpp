@@ -362,10 +362,10 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       counters.triangles_clipped += cc.triangles_clipped;
       counters.triangles_rasterized += cc.triangles_rasterized;
       counters.bin_references += st.chunks[c].bins.references();
-      counters.triangles_binned += st.chunks[c].bins.triangles();
       kept_setups += st.chunks[c].bins.triangles();
       kept_references += st.chunks[c].bins.references();
     }
+    counters.triangles_binned += kept_setups;
     if (kept_setups > 0) {
       st.references_per_triangle =
           static_cast<double>(kept_references) / static_cast<double>(kept_setups);
