@@ -1604,8 +1604,6 @@ TEST(FastEngineOptions, ForcingAnUnsupportedOrUnknownTargetIsAnError) {
   EXPECT_THROW(Renderer{tiny_budget}, Error);
 }
 
-// TESSERA_SIMD forces the target of renderers left at SimdTarget::kAuto; a target named in
-// RendererOptions::simd wins over it; an unknown or unsupported value is an error naming it.
 // Sets TESSERA_SIMD for its lifetime and puts back what was there, also when a test fails.
 class SimdVariable {
  public:
