@@ -97,6 +97,10 @@ int64_t resolve_target(SimdTarget requested) {
   return bit;
 }
 
+int64_t runnable_target_bits() {
+  return available_bits();
+}
+
 bool is_available(SimdTarget target) {
   return best_of(candidate_bits(target)) != 0;
 }

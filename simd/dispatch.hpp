@@ -18,6 +18,11 @@ int64_t resolve_target(SimdTarget requested);
 // Whether the target is compiled into this build and supported by this CPU.
 bool is_available(SimdTarget target);
 
+// The Highway target bits compiled into this build that this CPU runs, one bit each: every one
+// of them is some SimdTarget's choice (resolve_target), so every kernel compiled can be forced
+// and tested.
+int64_t runnable_target_bits();
+
 // The user-facing name of a target bit ("avx512", "avx2", "sse4", "scalar", ...).
 std::string target_name(int64_t target_bit);
 

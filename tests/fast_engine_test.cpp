@@ -1604,6 +1604,23 @@ TEST(FastEngineOptions, ForcingAnUnsupportedOrUnknownTargetIsAnError) {
   EXPECT_THROW(Renderer{tiny_budget}, Error);
 }
 
+// Every kernel this build compiles for this CPU can be forced, so the suites that loop over
+// the forcible targets test each of them: a compiled target no SimdTarget reaches would run
+// (as the automatic choice on some CPU) without ever being compared with the others.
+TEST(FastEngineOptions, EveryCompiledTargetThisCpuRunsCanBeForced) {
+  int64_t reached = 0;
+  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
+                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
+    if (simd::is_available(t)) reached |= simd::resolve_target(t);
+  }
+  const int64_t runnable = simd::runnable_target_bits();
+  for (int64_t rest = runnable & ~reached; rest != 0; rest &= rest - 1) {
+    ADD_FAILURE() << "compiled target " << simd::target_name(rest & -rest)
+                  << " runs here but no SimdTarget forces it";
+  }
+  EXPECT_NE(runnable & reached, 0);
+}
+
 // Sets TESSERA_SIMD for its lifetime and puts back what was there, also when a test fails.
 class SimdVariable {
  public:

@@ -14,10 +14,14 @@
 #include "engine/src/fast/setup_kernel.hpp"
 
 // Arrays of vectors need sized vector types: targets with sizeless vectors are not compiled
-// here and use the portable (EMU128/scalar) instance instead.
-#ifndef HWY_DISABLED_TARGETS
-#define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
+// here and use the portable (EMU128/scalar) instance instead. The build's own exclusions
+// (cmake/TesseraDependencies.cmake) still apply.
+#ifndef TESSERA_HWY_DISABLED_TARGETS_EXPR
+#define TESSERA_HWY_DISABLED_TARGETS_EXPR 0
 #endif
+#undef HWY_DISABLED_TARGETS
+#define HWY_DISABLED_TARGETS \
+  (TESSERA_HWY_DISABLED_TARGETS_EXPR | HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "engine/src/fast/setup_kernel.cpp"
 #include <hwy/cache_control.h>
