@@ -128,8 +128,15 @@ std::vector<uint32_t> unique_edges(const std::vector<uint32_t>& triangles) {
 
 // Clip-space depth pushed back by this much (times w) in the wireframe's hidden-surface pass,
 // so that an edge wins the depth test against the surface it lies on (a constant polygon
-// offset, as glPolygonOffset's units do).
+// offset, as glPolygonOffset's units do). Back is toward the depth the compare lets lose:
+// larger z under LESS, smaller under GREATER (reversed Z).
 constexpr float kWireframeDepthOffset = 2e-4f;
+
+float wireframe_depth_offset(tessera::CompareOp compare) {
+  const bool reversed =
+      compare == tessera::CompareOp::kGreater || compare == tessera::CompareOp::kGreaterEqual;
+  return reversed ? -kWireframeDepthOffset : kWireframeDepthOffset;
+}
 
 // Wireframe (the lecture's "perspective + hidden line removal"): the triangles fill the depth
 // buffer only, pushed back slightly, then every edge is drawn as a line against it. Points:
@@ -154,8 +161,9 @@ void draw_scene_primitives(tessera::Renderer& renderer, tessera::Framebuffer& fb
         tessera::shade_vertices(o.mesh, o.model, scene.camera.eye, scene.light);
     if (pipeline.depth_test) {
       std::vector<tessera::Float4> pushed = clip;
+      const float offset = wireframe_depth_offset(pipeline.depth_compare);
       for (tessera::Float4& p : pushed)
-        p.z += kWireframeDepthOffset * p.w;
+        p.z += offset * p.w;
       tessera::PipelineState depth_only = pipeline;
       depth_only.color_write = false;
       renderer.draw(fb, depth_only, {pushed, colors, 4, o.mesh.indices});

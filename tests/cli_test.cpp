@@ -391,6 +391,9 @@ TEST(Cli, WireframeDrawsEdgesWithHiddenLinesRemoved) {
   const int filled = pixels("", "filled.png");
   const int hidden_removed = pixels("--wireframe", "wire.png");
   const int all_edges = pixels("--wireframe --no-depth", "all.png");
+  // Reversed Z pushes the hidden-surface pass the other way: the same edges stay visible.
+  const int reversed = pixels("--wireframe --reversed-z", "reversed.png");
+  EXPECT_NEAR(reversed, hidden_removed, hidden_removed / 50);
   EXPECT_GT(hidden_removed, 50);
   EXPECT_LT(hidden_removed, all_edges);  // the edges behind the front faces are hidden
   EXPECT_LT(all_edges, filled);
