@@ -13,20 +13,30 @@ inline constexpr uint32_t kTileSizeLog2 = 6;
 inline constexpr uint32_t kTileSize = 1u << kTileSizeLog2;
 inline constexpr uint32_t kTilePixels = kTileSize * kTileSize;
 
+// A grid of square tiles of 2^size_log2 pixels over a width x height image, aligned to its
+// top-left corner. The framebuffer's storage grid has kTileSize tiles; a draw's bin grid may
+// have 32, 64 or 128 (RendererOptions::bin_tile_size), lines bin to 128.
 struct TileGrid {
-  uint32_t width = 0;    // pixels
-  uint32_t height = 0;   // pixels
-  uint32_t tiles_x = 0;  // ceil(width / kTileSize)
-  uint32_t tiles_y = 0;  // ceil(height / kTileSize)
+  uint32_t width = 0;                  // pixels
+  uint32_t height = 0;                 // pixels
+  uint32_t size_log2 = kTileSizeLog2;  // a tile is 2^size_log2 pixels on a side
+  uint32_t tiles_x = 0;                // ceil(width / tile_size())
+  uint32_t tiles_y = 0;                // ceil(height / tile_size())
 
-  static constexpr TileGrid for_size(uint32_t width, uint32_t height) {
-    return {width, height, (width + kTileSize - 1) >> kTileSizeLog2,
-            (height + kTileSize - 1) >> kTileSizeLog2};
+  static constexpr TileGrid for_size(uint32_t width, uint32_t height,
+                                     uint32_t size_log2 = kTileSizeLog2) {
+    const uint32_t size = 1u << size_log2;
+    return {width, height, size_log2, (width + size - 1) >> size_log2,
+            (height + size - 1) >> size_log2};
   }
+  constexpr uint32_t tile_size() const { return 1u << size_log2; }
   constexpr uint32_t tile_count() const { return tiles_x * tiles_y; }
   constexpr uint32_t tile_of(uint32_t x, uint32_t y) const {
-    return (y >> kTileSizeLog2) * tiles_x + (x >> kTileSizeLog2);
+    return (y >> size_log2) * tiles_x + (x >> size_log2);
   }
+  // The pixel coordinates of a tile's top-left corner.
+  constexpr uint32_t tile_x0(uint32_t tile) const { return (tile % tiles_x) << size_log2; }
+  constexpr uint32_t tile_y0(uint32_t tile) const { return (tile / tiles_x) << size_log2; }
 };
 
 }  // namespace tessera::binning

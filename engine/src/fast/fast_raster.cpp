@@ -36,10 +36,10 @@ constexpr size_t kMinChunkTriangles = 4096;
 // chunks, so the setup phase ends with one worker idle while the other finishes its last ones,
 // and the chunks of a mesh differ in cost (`grid` at two threads: its first four chunks took
 // 7.5 to 9.3 ms each, the last four 6.9 to 7.5). At 4 chunks per worker the two workers were busy
-// 91-94% of `grid`'s setup phase, at 8 96-98% (benchmarks/RESULTS.md). More chunks also split
-// each tile's references into more, shorter lists: `medium` (200,000 triangles), whose raster
-// phase dominates, took 0.93 to 1.17 times as long with 8 in seven alternating rounds (median
-// 1.04), and keeps 4.
+// 91-94% of `grid`'s setup phase, at 8 96-98% (benchmarks/RESULTS.md decision 99). More chunks
+// also split each tile's references into more, shorter lists: `medium` (200,000 triangles), whose
+// raster phase dominates, took 0.93 to 1.17 times as long with 8 in seven alternating rounds
+// (median 1.04), and keeps 4.
 constexpr size_t kChunksPerWorker = 4;
 constexpr size_t kFineChunksPerWorker = 8;
 constexpr size_t kFineChunkTriangles = 32768;
@@ -130,7 +130,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   if (triangles == 0) return;
   const uint32_t samples = fb.desc.samples;
   const uint32_t bits = pipeline.subpixel_bits;
-  const BinGrid grid = BinGrid::for_size(fb.desc.width, fb.desc.height, st.bin_tile_log2);
+  const auto grid = binning::TileGrid::for_size(fb.desc.width, fb.desc.height, st.bin_tile_log2);
 
   // Kernel state for this draw.
   TileContext draw;
@@ -232,7 +232,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     const size_t remaining = triangles - start;
     // As many triangles as the budget holds. (A pass is not cut shorter to keep its setups in
     // cache: on `small` one pass took 0.92x the time of 32 MiB passes at one sample and 0.86x
-    // at four; see benchmarks/RESULTS.md.)
+    // at four; see benchmarks/RESULTS.md decision 106.)
     const size_t pass = std::min(remaining, setup_capacity * chunk_count * 9 / 10 + 1);
     for (size_t c = 0; c < chunk_count; ++c) {
       st.chunks[c].begin = start + pass * c / chunk_count;

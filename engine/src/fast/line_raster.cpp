@@ -27,6 +27,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "binning/tile_grid.hpp"
 #include "binning/tile_lists.hpp"
 #include "engine/src/fast/fragment_writer.hpp"
 #include "engine/src/fast/line_kernel.hpp"
@@ -641,10 +642,6 @@ namespace {
 // tile then make runs twice as long, and each segment is set up in half as many tiles, as with
 // the storage tiles' 64 pixels.
 constexpr uint32_t kLineTileLog2 = 7, kLineTile = 1u << kLineTileLog2;
-struct BinGrid {
-  uint32_t tiles_x, tiles_y;
-  uint32_t tile_count() const { return tiles_x * tiles_y; }
-};
 
 // Segments per chunk below which splitting the setup does not pay.
 constexpr size_t kMinChunkSegments = 2048;
@@ -661,8 +658,7 @@ void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, LineScratch& s
                      const LineState& state, std::span<const WindowSegment> segments,
                      Counters& counters) {
   if (segments.empty()) return;
-  const BinGrid bin_grid{(fb.desc.width + kLineTile - 1) >> kLineTileLog2,
-                         (fb.desc.height + kLineTile - 1) >> kLineTileLog2};
+  const auto bin_grid = binning::TileGrid::for_size(fb.desc.width, fb.desc.height, kLineTileLog2);
   const uint32_t threads = static_cast<uint32_t>(arena.max_concurrency());
   const size_t chunk_count = std::clamp<size_t>(segments.size() / kMinChunkSegments, 1,
                                                 threads <= 1 ? 1 : size_t{4} * threads);
@@ -714,8 +710,8 @@ void draw_thin_lines(tbb::task_arena& arena, int64_t simd_target, LineScratch& s
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, bin_grid.tile_count(), 1),
                       [&](const tbb::blocked_range<uint32_t>& r) {
                         for (uint32_t tile = r.begin(); tile != r.end(); ++tile) {
-                          const int64_t x0 = int64_t{tile % bin_grid.tiles_x} * kLineTile;
-                          const int64_t y0 = int64_t{tile / bin_grid.tiles_x} * kLineTile;
+                          const int64_t x0 = bin_grid.tile_x0(tile);
+                          const int64_t y0 = bin_grid.tile_y0(tile);
                           const Box tile_box{x0, y0, x0 + kLineTile - 1, y0 + kLineTile - 1};
                           TileWriter writer{fb, pipeline, state.antialiased, tile_counters[tile]};
                           std::optional<RunWriter> runs;

@@ -71,8 +71,8 @@ void draw_round_points(tbb::task_arena& arena, detail::FramebufferStorage& fb,
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, grid.tile_count(), 1),
                       [&](const tbb::blocked_range<uint32_t>& r) {
                         for (uint32_t tile = r.begin(); tile != r.end(); ++tile) {
-                          const int64_t tx0 = int64_t{tile % grid.tiles_x} * binning::kTileSize;
-                          const int64_t ty0 = int64_t{tile / grid.tiles_x} * binning::kTileSize;
+                          const int64_t tx0 = grid.tile_x0(tile);
+                          const int64_t ty0 = grid.tile_y0(tile);
                           TileWriter writer{fb, pipeline, true, tile_counters[tile]};
                           for (size_t c = 0; c < chunk_count; ++c) {
                             for (uint32_t i : bins[c].tile(tile)) {

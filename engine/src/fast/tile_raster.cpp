@@ -151,17 +151,18 @@ void draw_lists(const TileContext& tc, std::span<const ChunkView> chunks, uint32
 }  // namespace
 
 void raster_tile(const TileContext& draw, TriangleKernel kernel, PixelKernel pixel_kernel,
-                 SampleKernel sample_kernel, detail::FramebufferStorage& fb, const BinGrid& bins,
-                 uint32_t tile, std::span<const ChunkView> chunks, Counters& counters) {
+                 SampleKernel sample_kernel, detail::FramebufferStorage& fb,
+                 const binning::TileGrid& bins, uint32_t tile, std::span<const ChunkView> chunks,
+                 Counters& counters) {
   // A tile no triangle of this pass touches is left as it is, a pending clear included: the
   // clear is written when the tile is next drawn or read.
   bool empty = true;
   for (const ChunkView& chunk : chunks)
     empty = empty && chunk.bins->tile(tile).empty();
   if (empty) return;
-  const int32_t size = 1 << bins.size_log2;
-  const int32_t bx0 = static_cast<int32_t>(tile % bins.tiles_x) * size;
-  const int32_t by0 = static_cast<int32_t>(tile / bins.tiles_x) * size;
+  const int32_t size = static_cast<int32_t>(bins.tile_size());
+  const int32_t bx0 = static_cast<int32_t>(bins.tile_x0(tile));
+  const int32_t by0 = static_cast<int32_t>(bins.tile_y0(tile));
   const int32_t bx1 = std::min<int32_t>(bx0 + size, fb.desc.width) - 1;
   const int32_t by1 = std::min<int32_t>(by0 + size, fb.desc.height) - 1;
   constexpr int32_t kStorage = binning::kTileSize;
