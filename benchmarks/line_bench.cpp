@@ -1,7 +1,8 @@
 // tessera_line_bench: lecture 003's line timing (100,000 random lines in a 500x500 window) for
 // each of Tessera's line rules on both backends, at the requested thread counts. One line of
 // output per configuration, in the format of tessera_llvmpipe_lines, so the two can be read
-// side by side (scripts/compare-llvmpipe-lines.sh).
+// side by side: run both with the same --threads and --frames (tessera_llvmpipe_lines is built
+// when OSMesa is found).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

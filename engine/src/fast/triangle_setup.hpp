@@ -46,7 +46,9 @@ struct TriangleSetup {
   bool flat_q;  // q is 1 everywhere (affine, or every vertex has the same w): no division
   // One sample per pixel and a bounding box of at most 2x2 pixels: which of its pixel centres
   // are inside, bit (y - y0) * 4 + (x - x0), from exact edge functions. 0 when not known (any
-  // other triangle, and draws that take pixel records): the kernel then tests the edges itself.
+  // other triangle, and draws that take pixel records, whose setup tests boxes up to 3x3 for
+  // the records instead): the kernel then tests the edges itself, pixel centre by pixel centre
+  // for boxes up to kCentresBox (3) pixels across and down (block_kernel-inl.h).
   uint8_t centres;
   float z_dx, z_dy;
   float z_min, z_max;  // over the vertices
