@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes a TRI1 capture's triangles stably sorted by the 64-pixel screen tile of their centroid.
 
-A measuring aid (benchmarks/RESULTS.md, seventh session): drawn from the sorted capture, a
+A measuring aid (benchmarks/RESULTS.md decision 35): drawn from the sorted capture, a
 tile's triangle setups lie together in memory, while each tile's single-tile triangles keep
 their order, so the same depth tests run. The difference in frame time bounds what in-order
 setup reads could gain.

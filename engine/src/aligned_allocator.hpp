@@ -2,7 +2,8 @@
 // bins): 64-byte aligned, so SIMD kernels load and store whole cache lines; on Linux the whole
 // 2 MiB pages inside a buffer of 4 MiB or more are advised to be transparent huge pages. The
 // raster phase reads setups at scattered places of a buffer of many megabytes, and with 4 KiB
-// pages nearly every triangle it reads costs a TLB miss (measured: benchmarks/RESULTS.md).
+// pages nearly every triangle it reads costs a TLB miss (measured: benchmarks/RESULTS.md
+// decision 1).
 #pragma once
 
 #include <cstddef>

@@ -70,22 +70,26 @@ struct RendererOptions {
   // with 8, 4x1 with 4) is first classified by the edge values at its corner pixels against
   // the samples' offsets: outside an edge it is skipped, and edges it lies wholly inside are not
   // tested. Same image; off by default because the scalar test costs more than the vector edge
-  // compares it saves (benchmarks/RESULTS.md).
+  // compares it saves (benchmarks/RESULTS.md decision 10).
   bool sub_block_tests = false;
-  // Tiny-triangle records: a triangle whose bounding box is at most 3x3 pixels and which
-  // covers at most three pixel centres (one sample), or has covered samples in at most four
-  // pixels (two and four samples), is set up as its pixels' depth and colour values, a 32- or
-  // 64-byte record read in one cache line, instead of a 160-byte setup the kernels evaluate.
+  // Tiny-triangle records: at one sample, a triangle whose bounding box is at most 3x3 pixels
+  // and which covers one to three pixel centres is set up as those pixels' depth and colour
+  // values, a 32-byte record; at two and four samples, one whose box is at most 3 pixels across
+  // and 4 down and whose covered samples lie in at most five pixels, as a 64-byte record of
+  // their sample masks, depth planes and colours. Each is read in one cache line, instead of a
+  // 160-byte setup the kernels evaluate.
   // Only for RGBA8 or no colour. Same image (the values are the kernels'); off, every
-  // triangle gets the full setup (benchmarks/RESULTS.md measures what they buy).
+  // triangle gets the full setup (what they buy: benchmarks/RESULTS.md decisions 48, 57, 124
+  // and 125).
   bool tiny_triangle_records = true;
 };
 
 // One draw call's vertex data, all in caller-owned memory that the renderer only reads.
 struct DrawInput {
   std::span<const Float4> positions;  // clip space
-  // attribute_count floats per vertex, vertex-major. Attributes 0..3 are the colour RGBA;
-  // missing colour components read as (0, 0, 0, 1).
+  // attribute_count floats per vertex (0 to 16), vertex-major. Attributes 0..3 are the colour
+  // RGBA, Gouraud-interpolated; missing colour components read as (0, 0, 0, 1). Attributes
+  // from 4 on are checked (their count, and that they are finite) but no stage uses them yet.
   std::span<const float> attributes;
   uint32_t attribute_count = 0;
   // Triangle list indices; empty means positions are taken three at a time.

@@ -85,9 +85,9 @@ HWY_INLINE auto all_lanes(D d) {
 // Masked stores of whole vectors. On x86 without AVX-512 a masked store (AVX2's vmaskmovps and
 // vpmaskmovd) is microcoded on AMD's Zen 1 to 3, about a dozen cycles each: there, a load, a
 // blend and a store of the whole vector instead (on a Zen 3 host `small` took about 0.75x the
-// time at one sample and 0.5x at four, benchmarks/RESULTS.md). Every vector the kernels store this
-// way lies in one block row of the tile being drawn, which only the task drawing that tile touches,
-// so the lanes written back unchanged race with nothing.
+// time at one sample and 0.5x at four, benchmarks/RESULTS.md decision 170). Every vector the
+// kernels store this way lies in one block row of the tile being drawn, which only the task
+// drawing that tile touches, so the lanes written back unchanged race with nothing.
 #if HWY_ARCH_X86 && HWY_TARGET > HWY_AVX3
 inline constexpr bool kStoreByBlend = true;
 #else
@@ -136,7 +136,7 @@ HWY_INLINE auto depth_passes(D d, CompareOp op, V incoming, V stored) {
 
 // The depth test of a loop compiled for one compare op: LessCompare for CompareOp::kLess, the
 // default, whose loop then holds no switch over the op (the window path at four samples: small
-// about 0.93x the time, benchmarks/RESULTS.md); AnyCompare for the others.
+// about 0.93x the time, benchmarks/RESULTS.md decision 79); AnyCompare for the others.
 struct LessCompare {
   template <class D, class V>
   HWY_INLINE auto operator()(D, V incoming, V stored) const {
@@ -562,9 +562,9 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
             // group to lane group and sample to sample, a branch on it is often mispredicted,
             // and an empty masked store costs less (small triangles at 4 samples: small 4%,
             // tiny 7% faster; at 1 sample: small 2%; the general path at one sample: huge
-            // about 0.96x, large 0.94x to 1.00x, medium the same, benchmarks/RESULTS.md). The
-            // general path's multisample blocks keep the branch (without it medium took 1.03x
-            // the time at 4 samples).
+            // about 0.96x, large 0.94x to 1.00x, medium the same, benchmarks/RESULTS.md
+            // decisions 15, 41 and 160). The general path's multisample blocks keep the branch
+            // (without it medium took 1.03x the time at 4 samples).
             store_masked(z, pass, df, plane);
             wrote |= !hn::AllFalse(df, pass);
           } else if (!hn::AllFalse(df, pass)) {
@@ -665,7 +665,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
 // raster_block out of line, for the general path: one copy of the block code for all its block
 // loops (small triangles inline theirs); next to a block's 64 pixels the call costs little.
 // With and without the sub-block tests: a copy of its own for each, as the tests in the lane
-// loop, even skipped, cost the loop without them 1-3% (benchmarks/RESULTS.md).
+// loop, even skipped, cost the loop without them 1-3% (benchmarks/RESULTS.md decision 10).
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kSubBlocks, class VI>
 HWY_NOINLINE void raster_block_outlined(const TileContext& tc, const TriangleSetup& t,
                                         TriangleState& st, VI lane_e0, VI lane_e1, VI lane_e2,
@@ -1106,7 +1106,7 @@ HWY_INLINE hn::Mask<D> and_greater([[maybe_unused]] D d, hn::Mask<D> m, hn::Vec<
 // lanes' float sums are within hiz_margin of the plane (the block base in double, then offsets
 // of under 8 px; the gradients' float rounding over a small triangle's 40 px is below it too).
 // With that room inside (0, 1) the clamp changes no covered lane, and is left out (`small` at
-// four samples 0.95x to 0.98x the time, benchmarks/RESULTS.md).
+// four samples 0.95x to 0.98x the time, benchmarks/RESULTS.md decision 129).
 HWY_INLINE bool window_depth_may_clamp(const TriangleSetup& t) {
   const double z_margin = hiz_margin(t);
   return !(t.z_min - z_margin > 0.0 && t.z_max + z_margin < 1.0);
@@ -1135,15 +1135,16 @@ HWY_INLINE bool window_spans_two_blocks(const TileContext& tc, const TriangleSet
 // case, so that a box inside one block column reads its depth with one unmasked load of the
 // window's aligned line and writes under the pass mask alone, with no per-window choice
 // between one block and two (`small` about 0.97x the time at one sample and at four,
-// benchmarks/RESULTS.md).
+// benchmarks/RESULTS.md decision 164).
 //
 // kSimple: one sample or four, q flat (t.flat_q), the depth buffer float and no covered
 // sample's depth needing the clamp (window_depth_may_clamp), so the loop holds no perspective
 // division, depth rounding or clamp, and at four samples its sample loops unroll. At one sample
 // the colour needs no clamp either (packs_without_clamp), and RGBA8 packs without it. Such
 // triangles take this copy: `small` about 0.93x the time at four samples; at one about 0.99x,
-// then 0.95x of that without the colour clamp (benchmarks/RESULTS.md). Other sample counts do
-// not, as two samples with copies of their own made four samples 1.02x to 1.03x slower.
+// then 0.95x of that without the colour clamp (benchmarks/RESULTS.md decisions 165, 167 and
+// 168). Other sample counts do not, as two samples with copies of their own made four samples
+// 1.02x to 1.03x slower.
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kTwo, bool kSimple,
           class Compare>
 HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Counters& counters,
@@ -1218,7 +1219,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
   // What every window repeats, formed once: the gradients (read here, not through `t` in the
   // loop, where the compiler must assume the depth and colour stores may change them) and
   // their products with the lanes' columns, fx * gx, the first term of each plane's sum
-  // (`small` about 0.98x the time at one sample and at four, benchmarks/RESULTS.md).
+  // (`small` about 0.98x the time at one sample and at four, benchmarks/RESULTS.md decision 153).
   const float z_dx = t.z_dx, z_dy = t.z_dy;
   const auto z_col = hn::Mul(fx, hn::Set(df, z_dx));
   const float qa_gy[4] = {t.qa_dy[0], t.qa_dy[1], t.qa_dy[2], t.qa_dy[3]};
@@ -1338,7 +1339,7 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       // At two and four samples every plane is loaded before the first store: the planes lie
       // 16 KB apart, so a load from plane s + 1 issued after the store to plane s at the same
       // offset matches it in the low 12 address bits (4K aliasing). Measured on small: about
-      // 0.88x the time at four samples, 0.95x at two (benchmarks/RESULTS.md).
+      // 0.88x the time at four samples, 0.95x at two (benchmarks/RESULTS.md decision 83).
       if (kMulti && samples == 2) {
         const auto v0 = load_plane(0), v1 = load_plane(1);
         test_sample(0, v0);
@@ -1795,7 +1796,7 @@ void RasterSamples(const TileContext& tc, const SampleRecord& r, Counters& count
 // counters in; without it the kernel carries no counting code at all. Small triangles whose
 // bounding box is more than kSmallHizBox pixels wide or tall test Hi-Z per block (below that,
 // recomputing the bounds of blocks written since their last test costs more than the blocks it
-// rejects: `tiny` 1.14x, `small` 1.12x in benchmarks/RESULTS.md).
+// rejects: `tiny` 1.14x, `small` 1.12x, benchmarks/RESULTS.md decisions 18 and 135).
 template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
 void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
   if (!kMulti && t.centres != 0) {
