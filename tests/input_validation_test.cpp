@@ -135,14 +135,14 @@ TEST_P(DrawValidation, AttributesWithoutAnAttributeCountAreRejected) {
   expect_rejected(ErrorCode::kInvalidInput, {"16 floats", "need 0"});
 }
 
-TEST_P(DrawValidation, AttributeCountAboveSixteenIsRejected) {
-  attribute_count_ = kMaxAttributes + 1;
+TEST_P(DrawValidation, AttributeCountAboveThirtyTwoIsRejected) {
+  attribute_count_ = kMaxVaryings + 1;
   attributes_.assign(positions_.size() * attribute_count_, 0.5f);
-  expect_rejected(ErrorCode::kInvalidArgument, {"attribute_count 17", "maximum of 16"});
+  expect_rejected(ErrorCode::kInvalidArgument, {"attribute_count 33", "maximum of 32"});
 }
 
-TEST_P(DrawValidation, AttributeCountOfSixteenIsAccepted) {
-  attribute_count_ = kMaxAttributes;
+TEST_P(DrawValidation, AttributeCountOfThirtyTwoIsAccepted) {
+  attribute_count_ = kMaxVaryings;
   attributes_.assign(positions_.size() * attribute_count_, 0.5f);
   expect_drawn();
 }

@@ -22,9 +22,13 @@ namespace tessera {
 inline constexpr double kGuardBandPixels = 32768.0;
 inline constexpr double kMinClipW = 1e-30;
 
+// The values a clipped vertex carries: a draw's varyings, and three more with which the
+// reference carries each vertex's barycentric weights of the drawn triangle through clipping.
+inline constexpr uint32_t kMaxClipValues = kMaxVaryings + 3;
+
 struct ClipVertex {
   double x = 0, y = 0, z = 0, w = 0;
-  std::array<double, kMaxAttributes> attributes{};
+  std::array<double, kMaxClipValues> attributes{};
 };
 
 // A triangle cut by 7 planes has at most 3 + 7 vertices.

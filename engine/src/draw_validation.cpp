@@ -2,6 +2,7 @@
 #include "engine/src/draw_validation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -95,10 +96,10 @@ void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
   }
 
   const size_t vertices = input.positions.size();
-  if (input.attribute_count > kMaxAttributes) {
+  if (input.attribute_count > kMaxVaryings) {
     fail(ErrorCode::kInvalidArgument, "attribute_count " + std::to_string(input.attribute_count) +
                                           " is more than the maximum of " +
-                                          std::to_string(kMaxAttributes));
+                                          std::to_string(kMaxVaryings));
   }
   if (input.attributes.size() != vertices * input.attribute_count) {
     fail(ErrorCode::kInvalidInput,
@@ -162,6 +163,115 @@ std::vector<bool> finite_vertices(const DrawInput& input) {
   return finite;
 }
 
+namespace {
+
+void check_finite(float value, const std::string& name) {
+  if (!std::isfinite(value)) {
+    std::ostringstream s;
+    s << name << " " << value << " is not finite";
+    fail(ErrorCode::kInvalidArgument, s.str());
+  }
+}
+
+void check_finite(const std::array<float, 3>& v, const std::string& name) {
+  for (int i = 0; i < 3; ++i)
+    check_finite(v[i], name + "[" + std::to_string(i) + "]");
+}
+
+// The `count` varyings from `first` on, which `what` reads, exist in the draw.
+void check_group(uint32_t first, uint32_t count, uint32_t attribute_count, const char* role,
+                 const char* what) {
+  if (first > kMaxVaryings || attribute_count < count || first > attribute_count - count) {
+    fail(ErrorCode::kInvalidArgument,
+         std::string(what) + " reads varyings " + std::to_string(first) + ".." +
+             std::to_string(uint64_t{first} + count - 1) + " (roles." + role +
+             "), but the draw has " + std::to_string(attribute_count));
+  }
+}
+
+void validate_phong(const PhongState& phong) {
+  for (int c = 0; c < 4; ++c)
+    check_finite(phong.base_color[c], "phong.base_color[" + std::to_string(c) + "]");
+  check_finite(phong.ka, "phong.ka");
+  check_finite(phong.kd, "phong.kd");
+  check_finite(phong.ks, "phong.ks");
+  check_finite(phong.ambient, "phong.ambient");
+  check_finite(phong.eye, "phong.eye");
+  if (!(phong.shininess >= 0.0f && std::isfinite(phong.shininess))) {
+    fail(ErrorCode::kInvalidArgument, "phong.shininess " + std::to_string(phong.shininess) +
+                                          " is not a finite value of at least 0");
+  }
+  if (phong.light_count > kMaxLights) {
+    fail(ErrorCode::kInvalidArgument, "phong.light_count " + std::to_string(phong.light_count) +
+                                          " is more than the maximum of " +
+                                          std::to_string(kMaxLights));
+  }
+  for (uint32_t l = 0; l < phong.light_count; ++l) {
+    const Light& light = phong.lights[l];
+    const std::string name = "phong.lights[" + std::to_string(l) + "]";
+    check_enum(light.kind, LightKind::kSpot, (name + ".kind").c_str());
+    check_finite(light.position, name + ".position");
+    check_finite(light.direction, name + ".direction");
+    check_finite(light.diffuse, name + ".diffuse");
+    check_finite(light.specular, name + ".specular");
+    check_finite(light.spot_cos_cutoff, name + ".spot_cos_cutoff");
+    check_finite(light.spot_exponent, name + ".spot_exponent");
+    if (light.kind != LightKind::kPoint && light.direction == std::array<float, 3>{0, 0, 0}) {
+      fail(ErrorCode::kInvalidArgument, name + ".direction is zero");
+    }
+    // 1 / (c0 + c1 d + c2 d^2) must stay finite and positive for every distance d >= 0.
+    if (!(light.c0 > 0.0f && light.c1 >= 0.0f && light.c2 >= 0.0f) || !std::isfinite(light.c1) ||
+        !std::isfinite(light.c2) || !std::isfinite(light.c0)) {
+      std::ostringstream s;
+      s << name << " attenuation (c0 " << light.c0 << ", c1 " << light.c1 << ", c2 " << light.c2
+        << ") needs c0 > 0 and c1, c2 >= 0, all finite";
+      fail(ErrorCode::kInvalidArgument, s.str());
+    }
+  }
+}
+
+}  // namespace
+
+void validate_shading(const Framebuffer& target, const PipelineState& pipeline,
+                      const DrawInput& input, size_t triangles) {
+  for (uint32_t i = 0; i < kMaxVaryings; ++i) {
+    check_enum(pipeline.varying_modes[i], VaryingMode::kFlat,
+               ("varying_modes[" + std::to_string(i) + "]").c_str());
+  }
+  check_enum(pipeline.shader, FragmentShader::kPhong, "shader");
+  check_enum(pipeline.output, TargetOutput::kObjectId, "output");
+  const uint32_t count = input.attribute_count;
+  const VaryingRoles& roles = pipeline.roles;
+  if (pipeline.output == TargetOutput::kNormal)
+    check_group(roles.normal, 3, count, "normal", "output kNormal");
+  if (pipeline.output == TargetOutput::kPosition) {
+    check_group(roles.position, 3, count, "position", "output kPosition");
+  }
+  if (pipeline.output == TargetOutput::kColor && pipeline.shader == FragmentShader::kPhong) {
+    check_group(roles.normal, 3, count, "normal", "shader kPhong");
+    check_group(roles.position, 3, count, "position", "shader kPhong");
+    validate_phong(pipeline.phong);
+  }
+  // IDs are written as floats: exact below 2^24, and only a float target keeps them.
+  constexpr uint64_t kExactIds = uint64_t{1} << 24;
+  const bool ids =
+      pipeline.output == TargetOutput::kPrimitiveId || pipeline.output == TargetOutput::kObjectId;
+  if (ids && pipeline.color_write && target.desc().color_format != ColorFormat::kRGBA32F) {
+    fail(ErrorCode::kInvalidArgument,
+         "output kPrimitiveId and kObjectId need an RGBA32F colour target (an RGBA8 one would "
+         "clamp the IDs to 0..1)");
+  }
+  if (pipeline.output == TargetOutput::kPrimitiveId && triangles > kExactIds) {
+    fail(ErrorCode::kInvalidArgument,
+         "output kPrimitiveId: the draw has " + std::to_string(triangles) +
+             " triangles, more than the 2^24 a float target holds exactly");
+  }
+  if (pipeline.output == TargetOutput::kObjectId && pipeline.object_id >= kExactIds) {
+    fail(ErrorCode::kInvalidArgument, "object_id " + std::to_string(pipeline.object_id) +
+                                          " is not below 2^24 (exact in a float target)");
+  }
+}
+
 void validate_draw(const Framebuffer& target, const PipelineState& pipeline, const DrawInput& input,
                    bool finite_values, tbb::task_arena* arena) {
   if (input.indices.empty()) {
@@ -175,6 +285,8 @@ void validate_draw(const Framebuffer& target, const PipelineState& pipeline, con
                                        std::to_string(input.indices.size()));
   }
   validate_vertices(target, pipeline, input, finite_values, arena);
+  validate_shading(target, pipeline, input,
+                   (input.indices.empty() ? input.positions.size() : input.indices.size()) / 3);
 }
 
 namespace {

@@ -24,6 +24,12 @@ namespace tessera {
 void validate_draw(const Framebuffer& target, const PipelineState& pipeline, const DrawInput& input,
                    bool finite_values = true, tbb::task_arena* arena = nullptr);
 
+// The triangle shading state (tessera/shading.hpp): enums in range, the varyings each role
+// the shader and the output read present in the draw, the Phong state finite and its lights'
+// attenuation positive, IDs only into a float target and below 2^24. Part of validate_draw.
+void validate_shading(const Framebuffer& target, const PipelineState& pipeline,
+                      const DrawInput& input, size_t triangles);
+
 // What validate_draw checks except the triangle list's vertex count: the pipeline state,
 // attribute sizes, index range and (with finite_values) finite values. Used by every kind of
 // draw.

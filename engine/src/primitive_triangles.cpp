@@ -46,6 +46,14 @@ PipelineState triangle_pipeline(const PipelineState& pipeline) {
   PipelineState p = pipeline;
   p.cull = CullMode::kNone;
   p.clip_depth = ClipDepth::kZeroToOne;
+  // Points, lines and polygons are coloured by their varyings 0..3, whatever the triangle
+  // shading state says; their triangles carry only those four (with the pipeline's
+  // interpolation).
+  const PipelineState defaults;
+  p.varying_modes = defaults.varying_modes;
+  p.shader = defaults.shader;
+  p.output = defaults.output;
+  p.roles = defaults.roles;
   return p;
 }
 

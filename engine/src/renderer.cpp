@@ -123,6 +123,11 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
     const bool check_in_setup = !cull_non_finite && impl_->options.backend == Backend::kFast &&
                                 fast::FastRasterizer::checks_finite_values(input);
     validate_draw(target, pipeline, input, !cull_non_finite && !check_in_setup, &impl_->arena);
+    if (impl_->options.backend == Backend::kFast) {
+      const std::string unsupported =
+          fast::FastRasterizer::unsupported_state(pipeline, input.attribute_count);
+      if (!unsupported.empty()) throw Error(ErrorCode::kUnsupported, unsupported);
+    }
     // Pending clears are left to the fast engine's tiles (draw_triangles writes them for the
     // reference).
     detail::FramebufferStorage& storage = detail::FramebufferAccess::deferred_storage(target);
@@ -138,7 +143,7 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
     // The triangles whose three vertices are finite, as an index list into the caller's data.
     const size_t triangles =
         (input.indices.empty() ? input.positions.size() : input.indices.size()) / 3;
-    std::vector<uint32_t> kept;
+    std::vector<uint32_t> kept, kept_ids;  // kept_ids: their indices in the caller's draw
     kept.reserve(triangles * 3);
     for (size_t t = 0; t < triangles; ++t) {
       uint32_t v[3];
@@ -146,23 +151,26 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
         v[k] = input.indices.empty() ? static_cast<uint32_t>(3 * t + k) : input.indices[3 * t + k];
       if (finite[v[0]] && finite[v[1]] && finite[v[2]]) {
         kept.insert(kept.end(), v, v + 3);
+        if (pipeline.output == TargetOutput::kPrimitiveId)
+          kept_ids.push_back(static_cast<uint32_t>(t));
       } else {
         ++impl_->counters.triangles_invalid;
       }
     }
     DrawInput valid = input;
     valid.indices = kept;
-    if (!kept.empty()) draw_triangles(storage, pipeline, valid);
+    if (!kept.empty()) draw_triangles(storage, pipeline, valid, false, kept_ids);
   });
 }
 
 void Renderer::draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,
-                              const DrawInput& input, bool check_finite) {
+                              const DrawInput& input, bool check_finite,
+                              std::span<const uint32_t> primitive_ids) {
   if (impl_->options.backend == Backend::kReference) {
     storage.write_all_pending();
     // The reference writes depth without maintaining the fast engine's Hi-Z bounds.
     if (pipeline.depth_test && pipeline.depth_write) storage.hiz_valid = false;
-    reference::draw(storage, pipeline, input, impl_->counters);
+    reference::draw(storage, pipeline, input, impl_->counters, primitive_ids);
   } else {
     impl_->fast.draw(impl_->arena, storage, pipeline, input, impl_->counters, check_finite);
   }

@@ -176,7 +176,8 @@ Call decode_call(FuzzedDataProvider& in, uint32_t fb_samples) {
     }
     c.positions.push_back(pos);
   }
-  c.attribute_count = in.ConsumeBool() ? 4 : in.ConsumeIntegralInRange<uint32_t>(0, 17);
+  c.attribute_count =
+      in.ConsumeBool() ? 4 : in.ConsumeIntegralInRange<uint32_t>(0, kMaxVaryings + 1);
   size_t floats = vertices * c.attribute_count;
   if (in.ConsumeIntegralInRange<int>(0, 15) == 0)
     floats = in.ConsumeIntegralInRange<size_t>(0, floats + 2);

@@ -13,6 +13,7 @@ enum class ErrorCode {
   kInvalidInput,     // vertex data, indices or file contents that cannot be drawn
   kIo,               // a file that cannot be opened, read or written
   kOutOfMemory,      // an allocation larger than the documented limits
+  kUnsupported,      // a valid state that the chosen backend cannot draw (it names the state)
 };
 
 class Error : public std::runtime_error {

@@ -4,7 +4,10 @@
 // (y up) is front-facing by default.
 #pragma once
 
+#include <array>
 #include <cstdint>
+
+#include "tessera/shading.hpp"
 
 namespace tessera {
 
@@ -26,7 +29,8 @@ enum class FrontFace { kCounterClockwise, kClockwise };  // as seen in NDC, y up
 enum class ClipDepth { kZeroToOne, kNegativeOneToOne };
 
 // Attribute interpolation: perspective-correct (a/w and 1/w interpolated, divided per pixel)
-// or affine (linear in screen space).
+// or affine (linear in screen space). The default of every varying; VaryingMode overrides it
+// per varying.
 enum class Interpolation { kPerspective, kAffine };
 
 inline constexpr uint32_t kMinSubpixelBits = 4;
@@ -51,6 +55,15 @@ struct PipelineState {
 
   // Fractional bits of the fixed-point window coordinates vertices are snapped to (4..8).
   uint32_t subpixel_bits = 8;
+
+  // Shading (tessera/shading.hpp). Triangles only: points, lines and polygons take their
+  // colour from the colour varyings 0..3 as before.
+  std::array<VaryingMode, kMaxVaryings> varying_modes{};  // per varying; kDefault: interpolation
+  FragmentShader shader = FragmentShader::kGouraud;
+  TargetOutput output = TargetOutput::kColor;
+  VaryingRoles roles;
+  PhongState phong;        // FragmentShader::kPhong
+  uint32_t object_id = 0;  // TargetOutput::kObjectId
 };
 
 }  // namespace tessera

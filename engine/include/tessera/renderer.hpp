@@ -87,9 +87,10 @@ struct RendererOptions {
 // One draw call's vertex data, all in caller-owned memory that the renderer only reads.
 struct DrawInput {
   std::span<const Float4> positions;  // clip space
-  // attribute_count floats per vertex (0 to 16), vertex-major. Attributes 0..3 are the colour
-  // RGBA, Gouraud-interpolated; missing colour components read as (0, 0, 0, 1). Attributes
-  // from 4 on are checked (their count, and that they are finite) but no stage uses them yet.
+  // attribute_count floats per vertex (0 to kMaxVaryings), vertex-major: the varyings, each
+  // interpolated as PipelineState::varying_modes says and read by the fragment shader and the
+  // outputs through PipelineState::roles (the Gouraud colour is varyings 0..3 by default;
+  // missing colour components read as (0, 0, 0, 1)). Points, lines and polygons use 0..3.
   std::span<const float> attributes;
   uint32_t attribute_count = 0;
   // Triangle list indices; empty means positions are taken three at a time.
@@ -184,7 +185,8 @@ class Renderer {
  private:
   struct Impl;
   void draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,
-                      const DrawInput& input, bool check_finite = false);
+                      const DrawInput& input, bool check_finite = false,
+                      std::span<const uint32_t> primitive_ids = {});
   std::unique_ptr<Impl> impl_;
 };
 

@@ -11,4 +11,5 @@
 #include "tessera/primitives.hpp"
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
+#include "tessera/shading.hpp"
 #include "tessera/types.hpp"

@@ -16,7 +16,8 @@ struct Float4 {
 
 // Largest framebuffer side, in pixels (the D3D11 limit).
 inline constexpr uint32_t kMaxFramebufferSize = 16384;
-// Largest number of float attributes per vertex.
-inline constexpr uint32_t kMaxAttributes = 16;
+// Largest number of float attributes (varyings) per vertex.
+inline constexpr uint32_t kMaxVaryings = 32;
+inline constexpr uint32_t kMaxAttributes = kMaxVaryings;
 
 }  // namespace tessera

@@ -121,6 +121,33 @@ int64_t FastRasterizer::simd_target() const noexcept {
   return state_->target;
 }
 
+std::string FastRasterizer::unsupported_state(const PipelineState& pipeline,
+                                              uint32_t attribute_count) {
+  const std::string tail = " is not drawn by the fast engine yet (Backend::kReference draws it)";
+  if (pipeline.shader != FragmentShader::kGouraud) return "shader kPhong" + tail;
+  if (pipeline.output != TargetOutput::kColor) {
+    return "output " + std::to_string(static_cast<unsigned>(pipeline.output)) +
+           " (a vision output)" + tail;
+  }
+  if (pipeline.roles.color != 0 && attribute_count > 0) {
+    return "roles.color " + std::to_string(pipeline.roles.color) + " (not 0)" + tail;
+  }
+  const VaryingMode mode = pipeline.interpolation == Interpolation::kAffine
+                               ? VaryingMode::kAffine
+                               : VaryingMode::kPerspective;
+  for (uint32_t c = 0; c < std::min(attribute_count, 4u); ++c) {
+    const VaryingMode m = pipeline.varying_modes[c];
+    if (m != VaryingMode::kDefault && m != mode) {
+      return "varying_modes[" + std::to_string(c) + "] = " +
+             (m == VaryingMode::kFlat     ? "kFlat"
+              : m == VaryingMode::kAffine ? "kAffine"
+                                          : "kPerspective") +
+             ", unlike the pipeline's interpolation," + tail;
+    }
+  }
+  return {};
+}
+
 void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb,
                           const PipelineState& pipeline, const DrawInput& input, Counters& counters,
                           bool check_finite) {

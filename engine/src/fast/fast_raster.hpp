@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <string>
 
 #include <tbb/task_arena.h>
 
@@ -37,6 +38,13 @@ class FastRasterizer {
   static bool checks_finite_values(const DrawInput& input) {
     return input.indices.empty() && input.attribute_count <= 4;
   }
+
+  // Empty when the fast engine draws `pipeline`'s shading state with `attribute_count`
+  // varyings; otherwise what it does not draw yet, for Error(kUnsupported). It draws the
+  // Gouraud colour of varyings 0..3 into the colour output, each present colour varying
+  // interpolated as PipelineState::interpolation says; the other shaders, outputs, roles and
+  // varying modes are the reference's only for now.
+  static std::string unsupported_state(const PipelineState& pipeline, uint32_t attribute_count);
 
   // Draws a validated draw call (see draw_validation.hpp) inside `arena`. With check_finite,
   // a draw checks_finite_values() accepts whose finite values were not validated: each

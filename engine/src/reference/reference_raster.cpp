@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "engine/src/clip.hpp"
+#include "engine/src/reference/reference_shade.hpp"
 #include "engine/src/sample_positions.hpp"
 
 namespace tessera::reference {
@@ -66,31 +67,112 @@ bool inside_edge(int64_t e, bool top_left) {
   return e > 0 || (e == 0 && top_left);
 }
 
-// Colour (attributes 0..3, missing components (0, 0, 0, 1)) at the fixed-point point (px, py)
-// from the triangle's screen-space barycentrics, perspective-correct or affine. Returns false
-// when the plane of 1/w is not positive there (a point beyond the triangle's horizon).
-bool interpolate_color(const std::array<WindowVertex, 3>& v, int64_t area, int64_t px, int64_t py,
-                       uint32_t attribute_count, Interpolation mode, std::array<float, 4>& out) {
+// What a draw's fragments are made of: every value a clipped vertex carries (the varyings,
+// then with TargetOutput::kBarycentrics the three barycentric carriers), each one's
+// interpolation resolved, and the first vertex's values for the flat ones.
+struct FragmentInputs {
+  uint32_t varyings = 0;                           // the draw's attribute_count
+  uint32_t values = 0;                             // varyings plus the carriers
+  std::array<VaryingMode, kMaxClipValues> mode{};  // kPerspective, kAffine or kFlat
+  bool needs_q = false;                            // a perspective value or the eye depth is read
+};
+
+FragmentInputs fragment_inputs(const PipelineState& pipeline, uint32_t attribute_count) {
+  FragmentInputs f;
+  f.varyings = attribute_count;
+  f.values = attribute_count + (pipeline.output == TargetOutput::kBarycentrics ? 3 : 0);
+  const VaryingMode fallback = pipeline.interpolation == Interpolation::kAffine
+                                   ? VaryingMode::kAffine
+                                   : VaryingMode::kPerspective;
+  for (uint32_t i = 0; i < f.values; ++i) {
+    const VaryingMode m =
+        i < attribute_count ? pipeline.varying_modes[i] : VaryingMode::kPerspective;
+    f.mode[i] = m == VaryingMode::kDefault ? fallback : m;
+    f.needs_q = f.needs_q || f.mode[i] == VaryingMode::kPerspective;
+  }
+  f.needs_q = f.needs_q || pipeline.output == TargetOutput::kEyeDepth;
+  return f;
+}
+
+// The values at the fixed-point point (px, py), from the triangle's screen-space barycentrics:
+// perspective-correct ones from a/w and 1/w, affine ones linearly, flat ones the first vertex's
+// (`flat`); `w` the clip-space w there (1 / the interpolated 1/w). Returns false when the plane
+// of 1/w is not positive there (a point beyond the triangle's horizon) and a value needs it.
+bool interpolate(const std::array<WindowVertex, 3>& v, int64_t area, int64_t px, int64_t py,
+                 const FragmentInputs& in, const std::array<double, kMaxClipValues>& flat,
+                 std::array<double, kMaxClipValues>& out, double& w) {
   const double b[3] = {static_cast<double>(edge(v[1], v[2], px, py)) / static_cast<double>(area),
                        static_cast<double>(edge(v[2], v[0], px, py)) / static_cast<double>(area),
                        static_cast<double>(edge(v[0], v[1], px, py)) / static_cast<double>(area)};
-  double weight[3] = {b[0], b[1], b[2]};
-  if (mode == Interpolation::kPerspective) {
+  double perspective[3] = {b[0], b[1], b[2]};
+  w = 1.0;
+  if (in.needs_q) {
     // Interpolate a/w and 1/w linearly in screen space, then divide.
     const double q[3] = {b[0] * v[0].inv_w, b[1] * v[1].inv_w, b[2] * v[2].inv_w};
     const double sum = q[0] + q[1] + q[2];
     if (!(sum > 0.0)) return false;
     for (int i = 0; i < 3; ++i)
-      weight[i] = q[i] / sum;
+      perspective[i] = q[i] / sum;
+    w = 1.0 / sum;
   }
-  out = {0.0f, 0.0f, 0.0f, 1.0f};
-  for (uint32_t c = 0; c < std::min(attribute_count, 4u); ++c) {
+  for (uint32_t c = 0; c < in.values; ++c) {
+    if (in.mode[c] == VaryingMode::kFlat) {
+      out[c] = flat[c];
+      continue;
+    }
+    const double* weight = in.mode[c] == VaryingMode::kPerspective ? perspective : b;
     double a = 0.0;
     for (int i = 0; i < 3; ++i)
       a += weight[i] * v[i].clip->attributes[c];
-    out[c] = static_cast<float>(a);
+    out[c] = a;
   }
   return true;
+}
+
+// The fragment's RGBA: the shader's colour, or a vision output (shade.hpp's rules).
+std::array<float, 4> shade(const PipelineState& pipeline, const FragmentInputs& in,
+                           const std::array<double, kMaxClipValues>& value, double w,
+                           uint32_t primitive) {
+  const auto group = [&](uint32_t first) {
+    return std::array<double, 3>{value[first], value[first + 1], value[first + 2]};
+  };
+  const auto replicate = [](double x) {
+    return std::array<float, 4>{static_cast<float>(x), static_cast<float>(x), static_cast<float>(x),
+                                1.0f};
+  };
+  const auto rgb = [](const std::array<double, 3>& x) {
+    return std::array<float, 4>{static_cast<float>(x[0]), static_cast<float>(x[1]),
+                                static_cast<float>(x[2]), 1.0f};
+  };
+  switch (pipeline.output) {
+    case TargetOutput::kColor:
+      break;
+    case TargetOutput::kEyeDepth:
+      return replicate(w);
+    case TargetOutput::kNormal:
+      return rgb(normalized(group(pipeline.roles.normal)));
+    case TargetOutput::kPosition:
+      return rgb(group(pipeline.roles.position));
+    case TargetOutput::kBarycentrics:
+      return rgb(group(in.varyings));
+    case TargetOutput::kPrimitiveId:
+      return replicate(primitive);
+    case TargetOutput::kObjectId:
+      return replicate(pipeline.object_id);
+  }
+  const uint32_t color = pipeline.roles.color;
+  const bool has_color = color <= in.varyings && in.varyings - color >= 4;
+  if (pipeline.shader == FragmentShader::kPhong) {
+    std::array<double, 4> base;
+    for (int c = 0; c < 4; ++c)
+      base[c] = double{pipeline.phong.base_color[c]} * (has_color ? value[color + c] : 1.0);
+    return phong(pipeline.phong, group(pipeline.roles.normal), group(pipeline.roles.position),
+                 base);
+  }
+  std::array<float, 4> out = {0.0f, 0.0f, 0.0f, 1.0f};
+  for (uint32_t c = 0; c < 4 && color + c < in.varyings; ++c)
+    out[c] = static_cast<float>(value[color + c]);
+  return out;
 }
 
 void write_color(detail::FramebufferStorage& fb, size_t index, const std::array<float, 4>& color) {
@@ -103,8 +185,11 @@ void write_color(detail::FramebufferStorage& fb, size_t index, const std::array<
   }
 }
 
+// One triangle (a piece of draw triangle `primitive`, whose first vertex's values are
+// `flat`).
 void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pipeline,
-                        std::array<WindowVertex, 3> v, uint32_t attribute_count,
+                        std::array<WindowVertex, 3> v, const FragmentInputs& inputs,
+                        const std::array<double, kMaxClipValues>& flat, uint32_t primitive,
                         Counters& counters) {
   int64_t area = edge(v[0], v[1], v[2].x, v[2].y);
   if (area == 0) {
@@ -182,14 +267,16 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
       // Shade once per pixel, at the pixel centre (at the first passing sample when the centre
       // lies beyond the triangle's horizon: inside the triangle 1/w is positive), and store to
       // every sample that passed.
-      std::array<float, 4> color{};
+      std::array<double, kMaxClipValues> values;
+      double w = 1.0;
       const int64_t cx = (px * 16 + 8) << shift;
       const int64_t cy = (py * 16 + 8) << shift;
-      if (!interpolate_color(v, area, cx, cy, attribute_count, pipeline.interpolation, color)) {
+      if (!interpolate(v, area, cx, cy, inputs, flat, values, w)) {
         const auto& o = pattern[first_passed];
-        interpolate_color(v, area, (px * 16 + 8 + o.dx) << shift, (py * 16 + 8 + o.dy) << shift,
-                          attribute_count, pipeline.interpolation, color);
+        interpolate(v, area, (px * 16 + 8 + o.dx) << shift, (py * 16 + 8 + o.dy) << shift, inputs,
+                    flat, values, w);
       }
+      const std::array<float, 4> color = shade(pipeline, inputs, values, w, primitive);
       for (uint32_t s = 0; s < samples; ++s) {
         if (passed[s]) {
           write_color(fb, fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s),
@@ -203,10 +290,11 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
 }  // namespace
 
 void draw(detail::FramebufferStorage& fb, const PipelineState& pipeline, const DrawInput& input,
-          Counters& counters) {
+          Counters& counters, std::span<const uint32_t> primitive_ids) {
   const bool indexed = !input.indices.empty();
   const size_t triangles = (indexed ? input.indices.size() : input.positions.size()) / 3;
   const uint32_t attribute_count = input.attribute_count;
+  const FragmentInputs inputs = fragment_inputs(pipeline, attribute_count);
   const GuardBand guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
 
   for (size_t t = 0; t < triangles; ++t) {
@@ -225,43 +313,48 @@ void draw(detail::FramebufferStorage& fb, const PipelineState& pipeline, const D
       for (uint32_t a = 0; a < attribute_count; ++a) {
         c.attributes[a] = input.attributes[vertex * attribute_count + a];
       }
+      // The barycentric carriers: vertex k's weight of vertex j is 1 where j = k, else 0.
+      for (uint32_t j = attribute_count; j < inputs.values; ++j) {
+        c.attributes[j] = j - attribute_count == static_cast<uint32_t>(k) ? 1.0 : 0.0;
+      }
     }
+    const std::array<double, kMaxClipValues> flat = tri[0].attributes;  // the provoking vertex
 
-    // The clipper interpolates attributes linearly in clip space, which is right for
-    // perspective-correct ones. Affine attributes are linear in screen space instead: along an
+    // The clipper interpolates values linearly in clip space, which is right for
+    // perspective-correct ones. Affine values are linear in screen space instead: along an
     // edge cut at clip-space parameter t they take lerp(a w, t) / lerp(w, t). So clip a * w and
     // divide by the new w (OpenGL 4.6 section 13.7, noperspective outputs); otherwise a cut,
-    // e.g. at the guard band, would change the colours inside the viewport.
-    const bool affine = pipeline.interpolation == Interpolation::kAffine;
+    // e.g. at the guard band, would change the colours inside the viewport. (Flat values are
+    // read from `flat`, never from the clipped vertices.)
+    const auto affine = [&](uint32_t a) { return inputs.mode[a] == VaryingMode::kAffine; };
     std::array<ClipVertex, 3> to_clip = tri;
-    if (affine) {
-      for (ClipVertex& c : to_clip) {
-        for (uint32_t a = 0; a < attribute_count; ++a) {
-          c.attributes[a] *= c.w;
-        }
+    for (ClipVertex& c : to_clip) {
+      for (uint32_t a = 0; a < inputs.values; ++a) {
+        if (affine(a)) c.attributes[a] *= c.w;
       }
     }
     ClipPolygon polygon;
-    const ClipResult clip = clip_triangle(to_clip, attribute_count, guard_band, polygon);
+    const ClipResult clip = clip_triangle(to_clip, inputs.values, guard_band, polygon);
     if (clip.clipped) ++counters.triangles_clipped;
     if (!clip.visible) {
       ++counters.triangles_culled;
       continue;
     }
-    if (affine && !clip.clipped) {
-      // Uncut: the attributes exactly as given.
+    if (!clip.clipped) {
+      // Uncut: the values exactly as given.
       for (int i = 0; i < 3; ++i) {
         polygon.vertices[i] = tri[i];
       }
-    } else if (affine) {
+    } else {
       // Every vertex left after clipping has w >= kMinClipW > 0.
       for (int i = 0; i < polygon.count; ++i) {
         ClipVertex& c = polygon.vertices[i];
-        for (uint32_t a = 0; a < attribute_count; ++a) {
-          c.attributes[a] /= c.w;
+        for (uint32_t a = 0; a < inputs.values; ++a) {
+          if (affine(a)) c.attributes[a] /= c.w;
         }
       }
     }
+    const uint32_t primitive = primitive_ids.empty() ? static_cast<uint32_t>(t) : primitive_ids[t];
     std::array<WindowVertex, kMaxClipVertices> window;
     for (int i = 0; i < polygon.count; ++i) {
       window[i] =
@@ -270,8 +363,8 @@ void draw(detail::FramebufferStorage& fb, const PipelineState& pipeline, const D
     // The clipped polygon is convex: draw it as a fan. The fan's inner edges are shared by
     // two pieces, and the fill rule gives each of their samples to exactly one piece.
     for (int i = 1; i + 1 < polygon.count; ++i) {
-      rasterize_triangle(fb, pipeline, {window[0], window[i], window[i + 1]}, attribute_count,
-                         counters);
+      rasterize_triangle(fb, pipeline, {window[0], window[i], window[i + 1]}, inputs, flat,
+                         primitive, counters);
     }
   }
 }

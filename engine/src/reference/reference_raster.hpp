@@ -2,6 +2,9 @@
 // path is tested against, selectable by users as Backend::kReference.
 #pragma once
 
+#include <cstdint>
+#include <span>
+
 #include "engine/src/framebuffer_storage.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
@@ -9,7 +12,10 @@
 namespace tessera::reference {
 
 // Draws a triangle list that has already been validated (see draw_validation.hpp).
+// TargetOutput::kPrimitiveId writes primitive_ids[t] for triangle t of the input, or t when
+// primitive_ids is empty (a draw the renderer cut to its finite triangles passes their
+// indices in the caller's draw).
 void draw(detail::FramebufferStorage& target, const PipelineState& pipeline, const DrawInput& input,
-          Counters& counters);
+          Counters& counters, std::span<const uint32_t> primitive_ids = {});
 
 }  // namespace tessera::reference

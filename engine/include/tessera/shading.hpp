@@ -1,0 +1,92 @@
+// Shading state: how a draw's varyings (the per-vertex floats of DrawInput::attributes) are
+// interpolated, which fragment shader turns them into a colour, and what the colour target
+// receives. Part of PipelineState.
+//
+// Varyings are interpolated as OpenGL 4.6 section 14.6.1 and Vulkan define smooth
+// (perspective-correct), noperspective (affine) and flat outputs; a flat varying takes the
+// value of the triangle's first vertex (the provoking vertex of D3D and Vulkan), clipped or
+// not. Per-pixel Phong is lecture 004's model (see PhongState).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "tessera/types.hpp"
+
+namespace tessera {
+
+// How one varying is interpolated across a triangle.
+enum class VaryingMode : uint8_t {
+  kDefault,      // as PipelineState::interpolation says (perspective-correct unless affine)
+  kPerspective,  // a/w and 1/w interpolated linearly on screen, divided per pixel
+  kAffine,       // linear on screen (GLSL noperspective)
+  kFlat,         // the first vertex's value, constant over the triangle
+};
+
+// The fragment shader: what colour a covered pixel gets (once per pixel, at its centre).
+enum class FragmentShader : uint8_t {
+  kGouraud,  // the colour varyings (VaryingRoles::color), RGBA; missing ones (0, 0, 0, 1)
+  kPhong,    // per-pixel Phong lighting (PhongState) of the interpolated normal and position
+};
+
+// What the colour target receives. kColor is the fragment shader's colour; the others are the
+// vision outputs that dataset and robotics tools read back, written as floats into R, G, B
+// (A = 1) and independent of the fragment shader. kPrimitiveId and kObjectId need an RGBA32F
+// target (exact below 2^24).
+enum class TargetOutput : uint8_t {
+  kColor,
+  kEyeDepth,      // clip-space w at the pixel: distance along the view axis for a
+                  // perspective projection (w = -z_eye); 1 under an orthographic one
+  kNormal,        // the interpolated normal varyings, normalized (0 for a zero normal)
+  kPosition,      // the interpolated position varyings
+  kBarycentrics,  // the perspective-correct weights of the drawn triangle's three vertices
+  kPrimitiveId,   // the triangle's index in the draw (clipped pieces keep their triangle's)
+  kObjectId,      // PipelineState::object_id
+};
+
+// Where the built-in shaders and outputs find their inputs among the varyings: the index of
+// the first of each group.
+struct VaryingRoles {
+  uint32_t color = 0;     // 4 varyings, RGBA: Gouraud's colour, Phong's base colour factor
+  uint32_t normal = 4;    // 3 varyings: Phong's N and TargetOutput::kNormal
+  uint32_t position = 7;  // 3 varyings: Phong's surface point and TargetOutput::kPosition
+};
+
+enum class LightKind : uint8_t { kDirectional, kPoint, kSpot };
+
+// A light of the Phong model, in the space of the normal and position varyings.
+struct Light {
+  LightKind kind = LightKind::kPoint;
+  std::array<float, 3> position{0, 0, 0};    // point and spot lights
+  std::array<float, 3> direction{0, 0, -1};  // directional and spot: where the light travels
+  std::array<float, 3> diffuse{1, 1, 1};     // Id
+  std::array<float, 3> specular{1, 1, 1};    // Is
+  // Attenuation 1 / (c0 + c1 d + c2 d^2) at distance d (point and spot; 1 for directional).
+  float c0 = 1, c1 = 0, c2 = 0;
+  // Spot lights: no light where the angle between `direction` and the ray to the point has a
+  // cosine below spot_cos_cutoff; inside the cone the light is scaled by that cosine to the
+  // power spot_exponent (OpenGL 1.x's spot model).
+  float spot_cos_cutoff = 0.9f;
+  float spot_exponent = 0;
+};
+
+inline constexpr uint32_t kMaxLights = 8;
+
+// Lecture 004's Phong model, evaluated per pixel. With N the interpolated normal, normalized,
+// and for each light L the unit vector from the point toward it, V the unit vector toward the
+// eye and R = 2 (N.L) N - L:
+//   I = ka Ia + sum over lights of att (kd max(0, N.L) Id + ks max(0, R.V)^n Is)
+// per channel, and the colour is clamp(I x base, 0, 1) in RGB with
+// the base's alpha. base = base_color, times the colour varyings when the draw has all four.
+// The specular term is 0 where N.L <= 0.
+struct PhongState {
+  std::array<float, 4> base_color{1, 1, 1, 1};
+  float ka = 0.1f, kd = 0.7f, ks = 0.2f;
+  float shininess = 32;                   // n
+  std::array<float, 3> ambient{1, 1, 1};  // Ia
+  std::array<float, 3> eye{0, 0, 0};      // in the lights' space
+  uint32_t light_count = 0;               // 0..kMaxLights
+  std::array<Light, kMaxLights> lights{};
+};
+
+}  // namespace tessera
