@@ -460,25 +460,33 @@ TEST(ReferenceShading, BadShadingStateIsRejectedNamingItAndLeavesTheTargetAlone)
 // them, with the target untouched.
 TEST(ReferenceShading, TheFastEngineDrawsGouraudWithAnyVaryingCountAndRejectsTheRest) {
   const Scene s = perspective_triangle(kMaxVaryings);
-  PipelineState gouraud;
-  gouraud.varying_modes[7] = VaryingMode::kFlat;  // not a colour varying: no matter
-  const std::vector<float> fast = render(gouraud, s.input(), 1, Backend::kFast);
-  const std::vector<float> reference = render(gouraud, s.input(), 1, Backend::kReference);
-  ASSERT_EQ(fast.size(), reference.size());
-  for (size_t i = 0; i < fast.size(); ++i) {
-    ASSERT_EQ(fast[i] == -1.0f, reference[i] == -1.0f) << i;  // the same coverage
-    EXPECT_NEAR(fast[i], reference[i], 1e-4 * std::abs(reference[i]) + 1e-5) << i;
+  // The colour from varyings 0..3, 5..8, and 30..31 (blue and alpha missing: 0 and 1).
+  for (uint32_t color : {0u, 5u, 30u}) {
+    PipelineState gouraud;
+    gouraud.roles.color = color;
+    gouraud.varying_modes[color == 0 ? 7 : 0] = VaryingMode::kFlat;  // not a colour varying
+    for (uint32_t samples : {1u, 4u}) {
+      const std::vector<float> fast = render(gouraud, s.input(), samples, Backend::kFast);
+      const std::vector<float> reference = render(gouraud, s.input(), samples, Backend::kReference);
+      ASSERT_EQ(fast.size(), reference.size());
+      for (size_t i = 0; i < fast.size(); ++i) {
+        ASSERT_EQ(fast[i] == -1.0f, reference[i] == -1.0f) << i;  // the same coverage
+        ASSERT_NEAR(fast[i], reference[i], 1e-4 * std::abs(reference[i]) + 1e-5)
+            << "colour " << color << " pixel " << i / 4;
+      }
+      if (color == 30) {
+        EXPECT_EQ(reference[(16 * kSize + 16) * 4 + 3], 1.0f);
+      }
+    }
   }
-  std::vector<std::pair<const char*, PipelineState>> unsupported(4);
+  std::vector<std::pair<const char*, PipelineState>> unsupported(3);
   unsupported[0].first = "shader kPhong";
   unsupported[0].second.shader = FragmentShader::kPhong;
   unsupported[0].second.roles = {0, 0, 3};
   unsupported[1].first = "vision output";
   unsupported[1].second.output = TargetOutput::kEyeDepth;
-  unsupported[2].first = "roles.color";
-  unsupported[2].second.roles.color = 4;
-  unsupported[3].first = "varying_modes[2] = kFlat";
-  unsupported[3].second.varying_modes[2] = VaryingMode::kFlat;
+  unsupported[2].first = "varying_modes[2] = kFlat";
+  unsupported[2].second.varying_modes[2] = VaryingMode::kFlat;
   for (const auto& [what, pipeline] : unsupported) {
     RendererOptions options;
     options.backend = Backend::kFast;

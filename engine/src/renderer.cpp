@@ -4,6 +4,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <tbb/task_arena.h>
 
@@ -15,6 +16,7 @@
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/primitive_draw.hpp"
 #include "engine/src/reference/reference_raster.hpp"
+#include "engine/src/vertex/vertex_stage.hpp"
 #include "simd/dispatch.hpp"
 #include "tessera/error.hpp"
 
@@ -90,6 +92,9 @@ struct Renderer::Impl {
   fast::LineScratch lines;
   std::string target_name;
   Counters counters;
+  // The vertex stage's output, kept between draws.
+  std::vector<Float4> shaded_positions;
+  std::vector<float> shaded_varyings;
 };
 
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {}
@@ -121,7 +126,7 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
     // own over the arrays first, and throws the same error before drawing anything. The others
     // are checked here: an indexed draw's vertices must all be finite, also those no index uses.
     const bool check_in_setup = !cull_non_finite && impl_->options.backend == Backend::kFast &&
-                                fast::FastRasterizer::checks_finite_values(input);
+                                fast::FastRasterizer::checks_finite_values(input, pipeline);
     validate_draw(target, pipeline, input, !cull_non_finite && !check_in_setup, &impl_->arena);
     if (impl_->options.backend == Backend::kFast) {
       const std::string unsupported =
@@ -161,6 +166,17 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
     valid.indices = kept;
     if (!kept.empty()) draw_triangles(storage, pipeline, valid, false, kept_ids);
   });
+}
+
+void Renderer::draw_vertices(Framebuffer& target, const PipelineState& pipeline,
+                             const VertexShader& shader, const VertexInput& input) {
+  const uint32_t per_vertex = vertex::validate(shader, input);
+  out_of_memory_as_error("draw_vertices", impl_->options, [&] {
+    vertex::shade(impl_->arena, impl_->fast.simd_target(), shader, input, per_vertex,
+                  impl_->shaded_positions, impl_->shaded_varyings);
+  });
+  draw(target, pipeline,
+       {impl_->shaded_positions, impl_->shaded_varyings, per_vertex, input.indices});
 }
 
 void Renderer::draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,

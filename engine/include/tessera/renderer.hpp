@@ -10,6 +10,7 @@
 #include "tessera/pipeline.hpp"
 #include "tessera/primitives.hpp"
 #include "tessera/types.hpp"
+#include "tessera/vertex.hpp"
 
 namespace tessera {
 
@@ -162,6 +163,15 @@ class Renderer {
   // bins but not their samples). The renderer and the framebuffer stay usable: a later draw
   // draws as it would on a framebuffer that held those pixels.
   void draw(Framebuffer& target, const PipelineState& pipeline, const DrawInput& input);
+
+  // Runs the vertex stage (tessera/vertex.hpp) on every vertex of `input`'s streams, then
+  // draws the triangles (the indices, or the vertices three at a time) as draw() does with the
+  // shaded positions and varyings. A bad stream or shader is an Error(kInvalidArgument) before
+  // anything runs; a shaded position or varying that is not finite is draw()'s error, naming
+  // the vertex. A user vertex shader that throws ends the draw with its exception, before
+  // anything is drawn.
+  void draw_vertices(Framebuffer& target, const PipelineState& pipeline, const VertexShader& shader,
+                     const VertexInput& input);
 
   // Draws one point per vertex (per index when there are indices), rules in primitives.hpp.
   // Validated, and failing for memory, like draw(); a bad point state is an

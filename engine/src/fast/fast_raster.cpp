@@ -129,13 +129,11 @@ std::string FastRasterizer::unsupported_state(const PipelineState& pipeline,
     return "output " + std::to_string(static_cast<unsigned>(pipeline.output)) +
            " (a vision output)" + tail;
   }
-  if (pipeline.roles.color != 0 && attribute_count > 0) {
-    return "roles.color " + std::to_string(pipeline.roles.color) + " (not 0)" + tail;
-  }
   const VaryingMode mode = pipeline.interpolation == Interpolation::kAffine
                                ? VaryingMode::kAffine
                                : VaryingMode::kPerspective;
-  for (uint32_t c = 0; c < std::min(attribute_count, 4u); ++c) {
+  const uint32_t first = pipeline.roles.color;
+  for (uint32_t c = first; c < std::min(attribute_count, first + 4); ++c) {
     const VaryingMode m = pipeline.varying_modes[c];
     if (m != VaryingMode::kDefault && m != mode) {
       return "varying_modes[" + std::to_string(c) + "] = " +
@@ -201,6 +199,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.height = fb.desc.height;
   ctx.subpixel_bits = bits;
   ctx.attribute_count = input.attribute_count;
+  ctx.color_first = pipeline.roles.color;
   ctx.pipeline = &pipeline;
   ctx.guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
   ctx.check_finite = check_finite;

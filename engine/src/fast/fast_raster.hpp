@@ -35,15 +35,16 @@ class FastRasterizer {
   // Whether draw() can check `input`'s values for NaN and infinity itself (check_finite): a
   // triangle soup (every vertex is drawn) whose attributes are at most the four colour
   // channels the setup reads.
-  static bool checks_finite_values(const DrawInput& input) {
-    return input.indices.empty() && input.attribute_count <= 4;
+  static bool checks_finite_values(const DrawInput& input, const PipelineState& pipeline) {
+    return input.indices.empty() && input.attribute_count <= 4 &&
+           (input.attribute_count == 0 || pipeline.roles.color == 0);
   }
 
   // Empty when the fast engine draws `pipeline`'s shading state with `attribute_count`
   // varyings; otherwise what it does not draw yet, for Error(kUnsupported). It draws the
-  // Gouraud colour of varyings 0..3 into the colour output, each present colour varying
-  // interpolated as PipelineState::interpolation says; the other shaders, outputs, roles and
-  // varying modes are the reference's only for now.
+  // Gouraud colour of the four colour varyings (roles.color) into the colour output, each
+  // present colour varying interpolated as PipelineState::interpolation says; the other
+  // shaders, outputs and varying modes are the reference's only for now.
   static std::string unsupported_state(const PipelineState& pipeline, uint32_t attribute_count);
 
   // Draws a validated draw call (see draw_validation.hpp) inside `arena`. With check_finite,

@@ -1062,16 +1062,16 @@ HWY_INLINE bool batch_finite(const Batch& batch, size_t lanes) {
 
 // Copies triangles [t, t + used) of the draw into the batch's first lanes (of `lanes`); spare
 // lanes repeat the last triangle.
-HWY_INLINE void fill_batch(const DrawInput& input, size_t t, size_t used, size_t lanes,
-                           Batch& batch) {
+HWY_INLINE void fill_batch(const SetupContext& ctx, const DrawInput& input, size_t t, size_t used,
+                           size_t lanes, Batch& batch) {
   const bool indexed = !input.indices.empty();
-  const uint32_t count = input.attribute_count;
+  const uint32_t stride = input.attribute_count, count = ctx.color_count();
   for (size_t l = 0; l < lanes; ++l) {
     const size_t tri = t + std::min(l, used - 1);
     for (int k = 0; k < 3; ++k) {
       const size_t vertex = indexed ? input.indices[tri * 3 + k] : tri * 3 + k;
       batch.position[k][l] = input.positions[vertex];
-      const float* a = count ? &input.attributes[vertex * count] : nullptr;
+      const float* a = count ? &input.attributes[vertex * stride + ctx.color_first] : nullptr;
       if (count >= 4) {  // every channel given, no per-channel choice
         std::memcpy(batch.color[k][l], a, sizeof(batch.color[k][l]));
       } else {
@@ -1114,7 +1114,7 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
   bool ok = true;
   // A list without indices and with the four colour values per vertex (captures, most meshes
   // drawn as lists) is read in place a full vector of triangles at a time.
-  const bool in_place = !indexed && count == 4;
+  const bool in_place = !indexed && count == 4 && ctx.color_first == 0;
   // Room for every triangle's record (uninitialized: SetupList's allocator), once for the
   // range; `next` is the first not written, and the lists are cut to it at the end.
   size_t next = setups.size(), next_pixel = pixels.size(), next_sample = samples.size();
@@ -1134,7 +1134,7 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
       }
       SetupListLanes(ctx, lc, positions, colors, out);
     } else {
-      fill_batch(input, t, used, lanes, batch);
+      fill_batch(ctx, input, t, used, lanes, batch);
       if (ctx.check_finite && !batch_finite(batch, lanes)) {
         ok = false;
         break;
@@ -1162,7 +1162,7 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         for (int k = 0; k < 3; ++k) {
           const size_t vertex = indexed ? input.indices[(t + l) * 3 + k] : (t + l) * 3 + k;
           position[k] = &input.positions[vertex];
-          if (count) attribute[k] = &input.attributes[vertex * count];
+          if (ctx.color_count()) attribute[k] = &input.attributes[vertex * count + ctx.color_first];
         }
         setup_triangle(ctx, position, attribute, setups, counters);
         for (size_t i = next; i < setups.size(); ++i)

@@ -218,7 +218,7 @@ void setup_triangle(const SetupContext& ctx, const std::array<const Float4*, 3>&
                     Counters& counters) {
   ++counters.triangles_submitted;
   const bool gl_depth = ctx.pipeline->clip_depth == ClipDepth::kNegativeOneToOne;
-  const uint32_t count = ctx.attribute_count;
+  const uint32_t count = ctx.color_count();
   // Clipping interpolates attributes linearly in clip space, right for perspective-correct
   // ones; affine ones are linear in screen space, so they are clipped as a * w and divided by
   // the new w (as the reference does; OpenGL 4.6 section 13.7).

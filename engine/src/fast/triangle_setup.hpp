@@ -3,6 +3,7 @@
 // kernels evaluate incrementally (Pineda 1988; Olano and Greer 1997 for the planes).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -86,6 +87,12 @@ struct SetupContext {
   uint32_t height = 0;
   uint32_t subpixel_bits = 8;
   uint32_t attribute_count = 0;
+  // The colour's first varying (PipelineState::roles.color) and how many of its four channels
+  // the draw has (missing ones read as 0, 0, 0, 1).
+  uint32_t color_first = 0;
+  uint32_t color_count() const {
+    return attribute_count > color_first ? std::min(attribute_count - color_first, 4u) : 0;
+  }
   const PipelineState* pipeline = nullptr;
   GuardBand guard_band;
   // The samples' offsets from the pixel centre, smallest and largest over the pattern, in 1/16
