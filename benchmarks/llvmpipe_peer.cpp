@@ -168,8 +168,8 @@ std::vector<float> interleave(const tessera::Capture& capture) {
   for (size_t i = 0; i < capture.positions.size(); ++i) {
     const tessera::Float4& p = capture.positions[i];
     v.insert(v.end(), {p.x, p.y, p.z, p.w});
-    v.insert(v.end(), capture.colors.begin() + static_cast<std::ptrdiff_t>(4 * i),
-             capture.colors.begin() + static_cast<std::ptrdiff_t>(4 * i + 4));
+    v.insert(v.end(), capture.varyings.begin() + static_cast<std::ptrdiff_t>(4 * i),
+             capture.varyings.begin() + static_cast<std::ptrdiff_t>(4 * i + 4));
   }
   return v;
 }

@@ -154,7 +154,7 @@ void draw_workload(tessera::Renderer& renderer, tessera::Framebuffer& fb, const 
   if (w.capture) {
     tessera::DrawInput input;
     input.positions = w.capture->positions;
-    input.attributes = w.capture->colors;
+    input.attributes = w.capture->varyings;
     input.attribute_count = 4;
     renderer.draw(fb, pipeline_for(s, tessera::capture_pipeline()), input);
   } else {

@@ -101,7 +101,7 @@ void BM_Workload(benchmark::State& state, std::string name, tessera::SimdTarget 
   pipeline.color_write = color;
   tessera::DrawInput input;
   input.positions = capture->positions;
-  input.attributes = capture->colors;
+  input.attributes = capture->varyings;
   input.attribute_count = 4;
   renderer.draw(fb, pipeline, input);  // warm-up: the renderer's bins and setups reach size
   uint64_t samples_covered = 0;        // per frame, from one counted draw

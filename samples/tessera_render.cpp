@@ -55,6 +55,8 @@ struct Options {
   bool smooth_lines = false;
   std::string backend = "fast";
   std::vector<float> clear{0.08f, 0.09f, 0.11f, 1.0f};
+  std::string shading = "gouraud";
+  std::vector<std::string> lights;  // "x,y,z" each
 };
 
 glm::vec3 vec3_of(const std::vector<float>& v) {
@@ -103,6 +105,7 @@ struct Job {
   size_t triangles = 0;
   Mode mode = Mode::kTriangles;
   std::vector<std::vector<uint32_t>> edges;  // per scene object, for kWireframe
+  tessera::SceneShading scene_shading = tessera::SceneShading::kPerVertex;
   tessera::PointState point_state;
   tessera::LineState line_state;
 };
@@ -177,13 +180,13 @@ void draw_job(tessera::Renderer& renderer, tessera::Framebuffer& fb,
   if (job.capture) {
     tessera::DrawInput input;
     input.positions = job.capture->positions;
-    input.attributes = job.capture->colors;
-    input.attribute_count = 4;
+    input.attributes = job.capture->varyings;
+    input.attribute_count = job.capture->varying_count;
     renderer.draw(fb, pipeline, input);
   } else if (job.mode != Mode::kTriangles) {
     draw_scene_primitives(renderer, fb, pipeline, job);
   } else {
-    tessera::draw_scene(renderer, fb, pipeline, *job.scene);
+    tessera::draw_scene(renderer, fb, pipeline, *job.scene, job.scene_shading);
   }
 }
 
@@ -205,6 +208,75 @@ bool has_extension(const std::string& path, const char* ext) {
   std::string e = std::filesystem::path(path).extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
   return e == ext;
+}
+
+// --shading and --light. A capture's varyings follow TRI2's layout (tessera/capture.hpp):
+// Gouraud colour 0..3; for Phong the eye-space normal 0..2, position 3..5 and, with ten or
+// more, the base colour 6..9; lights in eye space. Meshes go through the vertex stage (eye-space
+// position, normal and colour; scene.hpp), lights in world space.
+void apply_shading(const Options& o, bool is_capture, Job& job, tessera::PipelineState& pipeline) {
+  const std::string& s = o.shading;
+  const bool vision = s == "normals" || s == "depth" || s == "ids" || s == "objects";
+  if (s != "gouraud" && job.mode != Mode::kTriangles) {
+    bad_argument("--shading " + s + ": not with --wireframe or --points");
+  }
+  if (vision && !has_extension(o.output, ".exr")) {
+    bad_argument("--shading " + s + " writes float values: the output must be an .exr file");
+  }
+  if (!o.lights.empty() && s != "phong") bad_argument("--light: only with --shading phong");
+  if (o.lights.size() > tessera::kMaxLights) {
+    bad_argument("--light: at most " + std::to_string(tessera::kMaxLights) + " lights");
+  }
+  if (is_capture) pipeline.roles = {6, 0, 3};
+  if (s == "flat") {
+    if (!is_capture) bad_argument("--shading flat: for TRI1 and TRI2 captures");
+    for (uint32_t c = 0; c < 4; ++c)
+      pipeline.varying_modes[c] = tessera::VaryingMode::kFlat;
+    pipeline.roles.color = 0;
+  } else if (s == "gouraud") {
+    pipeline.roles.color = 0;
+  } else if (s == "phong") {
+    pipeline.shader = tessera::FragmentShader::kPhong;
+    job.scene_shading = tessera::SceneShading::kPerPixel;
+    glm::mat4 to_eye(1.0f);
+    if (!is_capture) to_eye = job.scene->camera.view();
+    for (const std::string& spec : o.lights) {
+      // Exactly three finite numbers between commas.
+      std::vector<float> xyz;
+      size_t from = 0;
+      bool ok = true;
+      while (ok && from <= spec.size() && xyz.size() < 4) {
+        const size_t comma = std::min(spec.find(',', from), spec.size());
+        const std::string part = spec.substr(from, comma - from);
+        size_t used = 0;
+        try {
+          xyz.push_back(std::stof(part, &used));
+        } catch (const std::exception&) {
+          ok = false;
+        }
+        ok = ok && used == part.size() && std::isfinite(xyz.back());
+        from = comma + 1;
+      }
+      if (!ok || xyz.size() != 3) bad_argument("--light: " + spec + " is not x,y,z");
+      const glm::vec4 p = to_eye * glm::vec4(xyz[0], xyz[1], xyz[2], 1.0f);
+      tessera::Light light;
+      light.kind = tessera::LightKind::kPoint;
+      light.position = {p.x, p.y, p.z};
+      pipeline.phong.lights[pipeline.phong.light_count++] = light;
+    }
+    if (is_capture && pipeline.phong.light_count == 0) {
+      pipeline.phong.light_count = 1;  // a light at the eye
+    }
+  } else if (s == "normals") {
+    pipeline.output = tessera::TargetOutput::kNormal;
+  } else if (s == "depth") {
+    pipeline.output = tessera::TargetOutput::kEyeDepth;
+  } else if (s == "ids") {
+    pipeline.output = tessera::TargetOutput::kPrimitiveId;
+  } else if (s == "objects") {
+    pipeline.output = tessera::TargetOutput::kObjectId;
+    pipeline.object_id = 1;
+  }
 }
 
 int run(const Options& o, const CLI::App& app) {
@@ -287,6 +359,7 @@ int run(const Options& o, const CLI::App& app) {
                   : o.cull == "front" ? tessera::CullMode::kFront
                                       : tessera::CullMode::kNone;
 
+  apply_shading(o, is_capture, job, pipeline);
   const bool float_color = o.float_color || has_extension(o.output, ".exr");
   tessera::Framebuffer fb(
       {width, height, o.samples,
@@ -308,7 +381,10 @@ int run(const Options& o, const CLI::App& app) {
   renderer_options.backend =
       o.backend == "fast" ? tessera::Backend::kFast : tessera::Backend::kReference;
   tessera::Renderer renderer(renderer_options);
-  const std::array<float, 4> clear{o.clear[0], o.clear[1], o.clear[2], o.clear[3]};
+  // Vision outputs start from zero (no normal, depth, triangle or object) unless asked.
+  const bool vision = pipeline.output != tessera::TargetOutput::kColor;
+  std::array<float, 4> clear{o.clear[0], o.clear[1], o.clear[2], o.clear[3]};
+  if (vision && !app.count("--clear")) clear = {0.0f, 0.0f, 0.0f, 0.0f};
 
   auto frame = [&] {
     const auto t0 = Clock::now();
@@ -471,6 +547,17 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--smooth-lines", o.smooth_lines, "antialiased wireframe lines");
   app.add_flag("--float", o.float_color, "float colour buffer (implied by an .exr output)");
+  app.add_option("--shading", o.shading,
+                 "gouraud (vertex colours; meshes lit per vertex), flat (captures), phong (per "
+                 "pixel), or a float output into an .exr file: normals, depth (eye), ids "
+                 "(triangle index), objects (object ID)")
+      ->check(CLI::IsMember({"gouraud", "flat", "phong", "normals", "depth", "ids", "objects"}))
+      ->capture_default_str();
+  app.add_option("--light", o.lights,
+                 "--shading phong: a point light at x,y,z (eye space for captures, world space "
+                 "for meshes); repeatable, up to 8")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app.add_option("--clear", o.clear, "clear colour r,g,b,a")->delimiter(',')->expected(4);
   bool info = false;
   app.add_flag("--info", info, "print the SIMD targets this CPU supports and exit");

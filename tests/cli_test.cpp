@@ -84,7 +84,7 @@ void write_filled_capture(const std::filesystem::path& path, uint32_t width, uin
   c.height = height;
   c.positions = {{-1, -1, 0, 1}, {3, -1, 0, 1}, {-1, 3, 0, 1}};
   for (int v = 0; v < 3; ++v)
-    c.colors.insert(c.colors.end(), rgba.begin(), rgba.end());
+    c.varyings.insert(c.varyings.end(), rgba.begin(), rgba.end());
   save_capture(path, c);
 }
 
@@ -123,6 +123,57 @@ TEST(Cli, CaptureRendersAtItsOwnSizeInItsColours) {
       EXPECT_EQ(image.at(x, y)[2], 0.0f) << x << "," << y;
     }
   }
+}
+
+// A TRI2 capture of one screen-filling triangle with Phong's ten varyings: an eye-space normal
+// (0, 0, 1), the eye-space position of a plane at z = -2 (x, y from -2 to 6), a white base
+// colour.
+void write_phong_capture(const std::filesystem::path& path) {
+  Capture c;
+  c.width = 16;
+  c.height = 16;
+  c.varying_count = 10;
+  const float xy[3][2] = {{-1, -1}, {3, -1}, {-1, 3}};
+  for (const auto& p : xy) {
+    c.positions.push_back({p[0], p[1], 0.0f, 1.0f});
+    c.varyings.insert(c.varyings.end(),
+                      {0, 0, 1, 2 * p[0], 2 * p[1], -2.0f, 1.0f, 1.0f, 1.0f, 1.0f});
+  }
+  save_capture(path, c);
+}
+
+TEST(Cli, Tri2CapturesDrawWithTheShadingAsked) {
+  TempDir dir;
+  write_phong_capture(dir / "phong.tri");
+  const std::string in = quoted(dir / "phong.tri") + " ";
+  // Per-pixel Phong with a light in front of the plane's centre: brightest under the light.
+  RunResult r = run_render(dir, in + "--shading phong --backend reference --light 0,0,-1 -o " +
+                                    quoted(dir / "phong.png"));
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << r.err;
+  const Image lit = read_image(dir / "phong.png");
+  EXPECT_GT(lit.at(8, 8)[0], lit.at(1, 1)[0] + 0.1f);  // (0, 0) in eye space against (-1.75, 1.75)
+  EXPECT_GT(lit.at(1, 1)[0], 0.1f);
+  // Gouraud reads varyings 0..3: the normal (0, 0, 1) and x as alpha (at least 1 right of
+  // x = 0.5, where the PNG reader, which multiplies by alpha, keeps blue).
+  r = run_render(dir, in + "-o " + quoted(dir / "gouraud.png"));
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << r.err;
+  EXPECT_EQ(read_image(dir / "gouraud.png").at(13, 5)[2], 1.0f);
+  // Normals into an EXR.
+  // The fast engine does not draw vision outputs yet: it says so and names the way out.
+  r = run_render(dir, in + "--shading normals -o " + quoted(dir / "n.exr"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("kReference"), std::string::npos) << r.err;
+  r = run_render(dir, in + "--shading normals --backend reference -o " + quoted(dir / "n.exr"));
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << r.err;
+  EXPECT_EQ(read_image(dir / "n.exr").at(3, 3)[2], 1.0f);
+  EXPECT_EQ(read_image(dir / "n.exr").at(3, 3)[0], 0.0f);
+  // Float outputs need a float file; lights need Phong.
+  r = run_render(dir, in + "--shading depth -o " + quoted(dir / "d.png"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(".exr"), std::string::npos) << r.err;
+  r = run_render(dir, in + "--light 1,2 --shading phong -o " + quoted(dir / "x.png"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--light: 1,2 is not x,y,z"), std::string::npos) << r.err;
 }
 
 TEST(Cli, MeshRendersFramedInTheImage) {
@@ -178,7 +229,7 @@ TEST(Cli, TheReferenceBackendDrawsTheFastEnginesImageAndEachNamesItself) {
       c.positions.push_back({tris[t][2 * v], tris[t][2 * v + 1], z, 1.0f});
       const float rgba[4] = {t == 0 ? 1.0f : 0.0f, t == 1 ? 1.0f : 0.0f, t >= 2 ? 1.0f : 0.0f,
                              1.0f};
-      c.colors.insert(c.colors.end(), rgba, rgba + 4);
+      c.varyings.insert(c.varyings.end(), rgba, rgba + 4);
     }
   }
   save_capture(dir / "tris.tri", c);
@@ -346,7 +397,7 @@ TEST(Cli, ADrawPastTheMemoryThereIsIsAnOutOfMemoryErrorNamingTheBudget) {
   for (int i = 0; i < 40000; ++i) {
     c.positions.insert(c.positions.end(), {{-1, -1, 0, 1}, {1, -1, 0, 1}, {1, 1, 0, 1}});
     for (int v = 0; v < 3; ++v)
-      c.colors.insert(c.colors.end(), {1, 0, 0, 1});
+      c.varyings.insert(c.varyings.end(), {1, 0, 0, 1});
   }
   save_capture(dir / "full.tri", c);
   const std::string command = "prlimit --as=1500000000 " + quoted(TESSERA_RENDER_EXE) + " " +

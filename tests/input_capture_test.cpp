@@ -58,7 +58,7 @@ Capture two_triangles() {
   c.positions = {{-1, -1, 0, 1},    {1, -1, 0.5f, 1},  {0, 1, -0.5f, 1},
                  {-0.0f, 2, -3, 4}, {1e-30f, 5, 6, 7}, {-8e20f, 9, 10, 11}};
   for (size_t i = 0; i < c.positions.size() * 4; ++i)
-    c.colors.push_back(0.125f * float(i));
+    c.varyings.push_back(0.125f * float(i));
   return c;
 }
 
@@ -71,7 +71,7 @@ TEST(CaptureFile, SaveThenLoadGivesTheSameCapture) {
   EXPECT_EQ(back.width, c.width);
   EXPECT_EQ(back.height, c.height);
   EXPECT_EQ(back.positions, c.positions);
-  EXPECT_EQ(back.colors, c.colors);
+  EXPECT_EQ(back.varyings, c.varyings);
   EXPECT_TRUE(std::signbit(back.positions[3].x));  // -0 stays -0: the bits round-trip
 }
 
@@ -85,7 +85,7 @@ TEST(CaptureFile, EmptyCaptureRoundTrips) {
   EXPECT_EQ(back.width, 1u);
   EXPECT_EQ(back.height, kMaxFramebufferSize);
   EXPECT_TRUE(back.positions.empty());
-  EXPECT_TRUE(back.colors.empty());
+  EXPECT_TRUE(back.varyings.empty());
 }
 
 TEST(CaptureFile, MissingFileIsAnIoErrorNamingTheFile) {
@@ -101,8 +101,61 @@ TEST(CaptureFile, DirectoryIsAnIoErrorNamingIt) {
 
 TEST(CaptureFile, WrongMagicIsRejected) {
   TempDir dir;
-  write_file(dir / "magic.tri", tri1_bytes(4, 4, 1, triangle_floats(1), "TRI2"));
+  write_file(dir / "magic.tri", tri1_bytes(4, 4, 1, triangle_floats(1), "TRI3"));
   expect_load_error(dir / "magic.tri", ErrorCode::kInvalidInput, {"wrong magic"});
+}
+
+// A TRI2 file's bytes: the magic, width, height, triangle count and varying count, then the
+// floats.
+std::string tri2_bytes(uint32_t width, uint32_t height, uint32_t count, uint32_t varyings,
+                       const std::vector<float>& floats) {
+  std::string bytes("TRI2", 4);
+  for (uint32_t v : {width, height, count, varyings})
+    bytes.append(reinterpret_cast<const char*>(&v), 4);
+  bytes.append(reinterpret_cast<const char*>(floats.data()), floats.size() * sizeof(float));
+  return bytes;
+}
+
+TEST(CaptureFile, Tri2CapturesOfAnyVaryingCountRoundTrip) {
+  for (uint32_t k : {0u, 1u, 10u, 32u}) {
+    TempDir dir;
+    Capture c;
+    c.width = 7;
+    c.height = 5;
+    c.varying_count = k;
+    for (int v = 0; v < 6; ++v) {
+      const float f = static_cast<float>(v);
+      c.positions.push_back({f * 0.1f, -f * 0.2f, 0.5f, 1.0f + f});
+      for (uint32_t i = 0; i < k; ++i)
+        c.varyings.push_back(f * 100.0f + static_cast<float>(i));
+    }
+    save_capture(dir / "k.tri", c);
+    const std::string bytes = read_file(dir / "k.tri");
+    EXPECT_EQ(bytes.substr(0, 4), k == 4 ? "TRI1" : "TRI2");
+    EXPECT_EQ(bytes.size(), (k == 4 ? 16u : 20u) + 6 * (4 + k) * sizeof(float));
+    const Capture back = load_capture(dir / "k.tri");
+    EXPECT_EQ(back.varying_count, k);
+    EXPECT_EQ(back.width, 7u);
+    EXPECT_EQ(back.positions, c.positions);
+    EXPECT_EQ(back.varyings, c.varyings);
+  }
+}
+
+TEST(CaptureFile, BadTri2FilesAreRejectedNamingTheProblem) {
+  TempDir dir;
+  const std::vector<float> two(3 * 6, 0.5f);  // one triangle of 4 + 2 floats a vertex
+  write_file(dir / "ok.tri", tri2_bytes(4, 4, 1, 2, two));
+  EXPECT_EQ(load_capture(dir / "ok.tri").varying_count, 2u);
+  write_file(dir / "many.tri", tri2_bytes(4, 4, 1, 33, two));
+  expect_load_error(dir / "many.tri", ErrorCode::kInvalidInput, {"varying count 33"});
+  write_file(dir / "short.tri", tri2_bytes(4, 4, 1, 2, two).substr(0, 18));
+  expect_load_error(dir / "short.tri", ErrorCode::kInvalidInput, {"truncated TRI2 header"});
+  write_file(dir / "size.tri", tri2_bytes(4, 4, 2, 2, two));
+  expect_load_error(dir / "size.tri", ErrorCode::kInvalidInput, {"header says 2 triangles"});
+  std::vector<float> nan = two;
+  nan[6 + 4 + 1] = std::numeric_limits<float>::quiet_NaN();  // vertex 1, varying 1
+  write_file(dir / "nan.tri", tri2_bytes(4, 4, 1, 2, nan));
+  expect_load_error(dir / "nan.tri", ErrorCode::kInvalidInput, {"varying 1 of vertex 1"});
 }
 
 TEST(CaptureFile, TruncatedHeaderIsRejected) {
@@ -222,14 +275,14 @@ void expect_save_error(const Capture& c, ErrorCode code, const std::string& part
 TEST(CaptureFile, SaveRejectsPositionsThatAreNotWholeTriangles) {
   Capture c = two_triangles();
   c.positions.pop_back();
-  c.colors.resize(c.positions.size() * 4);
+  c.varyings.resize(c.positions.size() * 4);
   expect_save_error(c, ErrorCode::kInvalidArgument, "3 positions per triangle");
 }
 
 TEST(CaptureFile, SaveRejectsAColourArrayOfTheWrongSize) {
   Capture c = two_triangles();
-  c.colors.pop_back();
-  expect_save_error(c, ErrorCode::kInvalidArgument, "4 colour floats");
+  c.varyings.pop_back();
+  expect_save_error(c, ErrorCode::kInvalidArgument, "4 varying floats");
 }
 
 TEST(CaptureFile, SaveRejectsAFrameSizeThatLoadWouldReject) {
@@ -245,7 +298,7 @@ TEST(CaptureFile, SaveRejectsANonFiniteValue) {
   c.positions[5].z = kInf;
   expect_save_error(c, ErrorCode::kInvalidInput, "position of vertex 5");
   c = two_triangles();
-  c.colors[7] = kNaN;
+  c.varyings[7] = kNaN;
   expect_save_error(c, ErrorCode::kInvalidInput, "colour of vertex 1");
 }
 
@@ -273,16 +326,16 @@ TEST(CaptureReplay, OpenGlDepthRangeIsMappedToZeroToOne) {
   c.positions = {{-2, -2, -1, 2}, {6, -2, -1, 2}, {-2, 6, -1, 2},
                  {-2, -2, 1, 2},  {6, -2, 1, 2},  {-2, 6, 1, 2}};
   for (int v = 0; v < 3; ++v)
-    c.colors.insert(c.colors.end(), {1.0f, 0.2f, 0.0f, 1.0f});
+    c.varyings.insert(c.varyings.end(), {1.0f, 0.2f, 0.0f, 1.0f});
   for (int v = 0; v < 3; ++v)
-    c.colors.insert(c.colors.end(), {0.0f, 0.0f, 1.0f, 1.0f});
+    c.varyings.insert(c.varyings.end(), {0.0f, 0.0f, 1.0f, 1.0f});
   save_capture(dir / "depth.tri", c);
   const Capture loaded = load_capture(dir / "depth.tri");
 
   Framebuffer fb({loaded.width, loaded.height, 1, ColorFormat::kRGBA8});
   fb.clear_depth(1.0f);
   Renderer renderer;
-  renderer.draw(fb, capture_pipeline(), {loaded.positions, loaded.colors, 4, {}});
+  renderer.draw(fb, capture_pipeline(), {loaded.positions, loaded.varyings, 4, {}});
   const std::vector<uint8_t> px = fb.read_rgba8();
   const std::vector<float> depth = fb.read_depth();
   for (uint32_t i = 0; i < 16; ++i) {

@@ -376,6 +376,30 @@ TEST(ReferenceShading, PerPixelPhongMatchesTheFormulaAtEveryPixel) {
   EXPECT_LT(spot_lit, 400);  // and the cone's edge crosses the plane
 }
 
+TEST(ReferenceShading, TwoSidedPhongTurnsANormalFacingAwayTowardTheEye) {
+  const Viewport vp{kSize, kSize};
+  Scene toward, away;
+  for (Scene* s : {&toward, &away}) {
+    s->positions = {vp.at(0, 0), vp.at(0, 64), vp.at(64, 0)};
+    s->count = 6;
+    const float sign = s == &toward ? 1.0f : -1.0f;
+    for (const auto& [x, y] : {std::pair{-4.0f, 4.0f}, {-4.0f, -12.0f}, {12.0f, 4.0f}})
+      s->varyings.insert(s->varyings.end(), {0.3f * sign, 0.1f * sign, sign, x, y, -10.0f});
+  }
+  PipelineState pipeline;
+  pipeline.shader = FragmentShader::kPhong;
+  pipeline.roles = {6, 0, 3};
+  pipeline.phong.light_count = 1;
+  pipeline.phong.lights[0].position = {2, 3, 0};
+  const std::vector<float> lit = render(pipeline, toward.input());
+  const std::vector<float> dark = render(pipeline, away.input());
+  pipeline.phong.two_sided = true;
+  EXPECT_EQ(render(pipeline, away.input()), lit);
+  EXPECT_EQ(render(pipeline, toward.input()), lit);
+  EXPECT_NE(dark, lit);
+  EXPECT_NEAR(pixel(dark, 10, 10)[0], 0.1f, 1e-6);  // ka Ia alone
+}
+
 TEST(ReferenceShading, BadShadingStateIsRejectedNamingItAndLeavesTheTargetAlone) {
   const Scene s = perspective_triangle(6);
   struct Bad {

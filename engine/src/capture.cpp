@@ -1,4 +1,4 @@
-// Reading and writing TRI1 captures (format in tessera/capture.hpp).
+// Reading and writing TRI1 and TRI2 captures (formats in tessera/capture.hpp).
 #include "tessera/capture.hpp"
 
 #include <bit>
@@ -13,14 +13,12 @@
 namespace tessera {
 
 static_assert(std::endian::native == std::endian::little,
-              "TRI1 is little-endian; a big-endian host needs byte swapping here");
+              "TRI1 and TRI2 are little-endian; a big-endian host needs byte swapping here");
 
 namespace {
 
-constexpr char kMagic[4] = {'T', 'R', 'I', '1'};
-constexpr uint64_t kHeaderBytes = 16;
-constexpr uint64_t kVertexBytes = 8 * sizeof(float);
-constexpr uint64_t kTriangleBytes = 3 * kVertexBytes;
+constexpr char kMagic1[4] = {'T', 'R', 'I', '1'};
+constexpr char kMagic2[4] = {'T', 'R', 'I', '2'};
 
 [[noreturn]] void bad(const std::filesystem::path& path, const std::string& what) {
   throw Error(ErrorCode::kInvalidInput, path.string() + ": " + what);
@@ -41,17 +39,20 @@ std::string frame_size_range(uint32_t width, uint32_t height) {
          " is out of range (1.." + std::to_string(kMaxFramebufferSize) + ")";
 }
 
-// Which of a vertex's 8 floats (x, y, z, w, r, g, b, a) is not finite, or -1.
-int first_non_finite(const float* f) {
-  for (int k = 0; k < 8; ++k) {
-    if (!std::isfinite(f[k])) return k;
+// Which of a vertex's floats (x, y, z, w, then the varyings) is not finite, or -1.
+int first_non_finite(const float* f, uint32_t n) {
+  for (uint32_t k = 0; k < n; ++k) {
+    if (!std::isfinite(f[k])) return static_cast<int>(k);
   }
   return -1;
 }
 
-std::string non_finite_message(size_t vertex, int component) {
-  return std::string(component < 4 ? "position" : "colour") + " of vertex " +
-         std::to_string(vertex) + " (triangle " + std::to_string(vertex / 3) + ") is not finite";
+std::string non_finite_message(size_t vertex, int component, bool tri1) {
+  const std::string what = component < 4 ? "position"
+                           : tri1        ? "colour"
+                                         : "varying " + std::to_string(component - 4);
+  return what + " of vertex " + std::to_string(vertex) + " (triangle " +
+         std::to_string(vertex / 3) + ") is not finite";
 }
 
 }  // namespace
@@ -63,30 +64,47 @@ Capture load_capture(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(ErrorCode::kIo, path.string() + ": cannot open for reading");
 
-  unsigned char header[kHeaderBytes];
-  if (file_size < kHeaderBytes || !in.read(reinterpret_cast<char*>(header), kHeaderBytes)) {
+  // The magic and TRI1's header, then TRI2's varying count.
+  unsigned char header[20];
+  if (file_size < 16 || !in.read(reinterpret_cast<char*>(header), 16)) {
     bad(path, "truncated TRI1 header (" + std::to_string(file_size) + " bytes, need 16)");
   }
-  if (std::memcmp(header, kMagic, 4) != 0) bad(path, "not a TRI1 capture (wrong magic)");
+  const bool tri1 = std::memcmp(header, kMagic1, 4) == 0;
+  if (!tri1 && std::memcmp(header, kMagic2, 4) != 0) {
+    bad(path, "not a TRI1 or TRI2 capture (wrong magic)");
+  }
+  uint64_t header_bytes = 16;
   Capture c;
+  if (!tri1) {
+    if (file_size < 20 || !in.read(reinterpret_cast<char*>(header + 16), 4)) {
+      bad(path, "truncated TRI2 header (" + std::to_string(file_size) + " bytes, need 20)");
+    }
+    header_bytes = 20;
+    c.varying_count = read_u32(header + 16);
+    if (c.varying_count > kMaxVaryings) {
+      bad(path, "varying count " + std::to_string(c.varying_count) + " is more than " +
+                    std::to_string(kMaxVaryings));
+    }
+  }
   c.width = read_u32(header + 4);
   c.height = read_u32(header + 8);
   const uint32_t count = read_u32(header + 12);
   if (!frame_size_ok(c.width, c.height)) bad(path, frame_size_range(c.width, c.height));
-  const uint64_t expected = kHeaderBytes + uint64_t{count} * kTriangleBytes;
+  const uint32_t floats = 4 + c.varying_count;  // per vertex
+  const uint64_t expected = header_bytes + uint64_t{count} * 3 * floats * sizeof(float);
   if (file_size != expected) {
     bad(path, "header says " + std::to_string(count) + " triangles (" + std::to_string(expected) +
                   " bytes) but the file has " + std::to_string(file_size) + " bytes");
   }
 
   // The size matches the header, so the allocation is what the file holds (at most 2^32
-  // triangles of 96 bytes); a file too large for memory is an Error, not std::bad_alloc.
+  // triangles of 3 * 36 floats); a file too large for memory is an Error, not std::bad_alloc.
   const size_t vertices = size_t{count} * 3;
   std::vector<float> raw;
   try {
-    raw.resize(vertices * 8);
+    raw.resize(vertices * floats);
     c.positions.resize(vertices);
-    c.colors.resize(vertices * 4);
+    c.varyings.resize(vertices * c.varying_count);
   } catch (const std::bad_alloc&) {
     throw Error(ErrorCode::kOutOfMemory,
                 path.string() + ": not enough memory for " + std::to_string(count) + " triangles");
@@ -95,11 +113,13 @@ Capture load_capture(const std::filesystem::path& path) {
     throw Error(ErrorCode::kIo, path.string() + ": read failed inside the triangle data");
   }
   for (size_t v = 0; v < vertices; ++v) {
-    const float* f = &raw[v * 8];
-    const int k = first_non_finite(f);
-    if (k >= 0) bad(path, non_finite_message(v, k));
+    const float* f = &raw[v * floats];
+    const int k = first_non_finite(f, floats);
+    if (k >= 0) bad(path, non_finite_message(v, k, tri1));
     c.positions[v] = {f[0], f[1], f[2], f[3]};
-    std::memcpy(&c.colors[v * 4], f + 4, 4 * sizeof(float));
+    if (c.varying_count > 0) {
+      std::memcpy(&c.varyings[v * c.varying_count], f + 4, c.varying_count * sizeof(float));
+    }
   }
   return c;
 }
@@ -107,10 +127,15 @@ Capture load_capture(const std::filesystem::path& path) {
 void save_capture(const std::filesystem::path& path, const Capture& c) {
   // Everything is checked before the file is opened: a capture that load_capture would reject
   // is not written, and a rejected save leaves an existing file as it was.
-  if (c.positions.size() % 3 != 0 || c.colors.size() != c.positions.size() * 4) {
+  if (c.varying_count > kMaxVaryings) {
+    throw Error(ErrorCode::kInvalidArgument, "capture for " + path.string() + ": varying count " +
+                                                 std::to_string(c.varying_count) +
+                                                 " is more than " + std::to_string(kMaxVaryings));
+  }
+  if (c.positions.size() % 3 != 0 || c.varyings.size() != c.positions.size() * c.varying_count) {
     throw Error(ErrorCode::kInvalidArgument,
-                "capture for " + path.string() +
-                    " needs 3 positions per triangle and 4 colour floats per position");
+                "capture for " + path.string() + " needs 3 positions per triangle and " +
+                    std::to_string(c.varying_count) + " varying floats per position");
   }
   if (!frame_size_ok(c.width, c.height)) {
     throw Error(ErrorCode::kInvalidArgument,
@@ -120,26 +145,33 @@ void save_capture(const std::filesystem::path& path, const Capture& c) {
     throw Error(ErrorCode::kInvalidArgument,
                 "capture for " + path.string() + " has more than 2^32 - 1 triangles");
   }
-  for (size_t v = 0; v < c.positions.size(); ++v) {
+  const bool tri1 = c.varying_count == 4;
+  const uint32_t floats = 4 + c.varying_count;
+  std::vector<float> vertex(floats);
+  const auto fill = [&](size_t v) {
     const Float4& p = c.positions[v];
-    const float* rgba = &c.colors[v * 4];
-    const float f[8] = {p.x, p.y, p.z, p.w, rgba[0], rgba[1], rgba[2], rgba[3]};
-    const int k = first_non_finite(f);
+    vertex[0] = p.x, vertex[1] = p.y, vertex[2] = p.z, vertex[3] = p.w;
+    for (uint32_t k = 0; k < c.varying_count; ++k)
+      vertex[4 + k] = c.varyings[v * c.varying_count + k];
+  };
+  for (size_t v = 0; v < c.positions.size(); ++v) {
+    fill(v);
+    const int k = first_non_finite(vertex.data(), floats);
     if (k >= 0) {
       throw Error(ErrorCode::kInvalidInput,
-                  "capture for " + path.string() + ": " + non_finite_message(v, k));
+                  "capture for " + path.string() + ": " + non_finite_message(v, k, tri1));
     }
   }
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) throw Error(ErrorCode::kIo, path.string() + ": cannot open for writing");
-  const uint32_t header[3] = {c.width, c.height, static_cast<uint32_t>(c.positions.size() / 3)};
-  out.write(kMagic, 4);
-  out.write(reinterpret_cast<const char*>(header), sizeof(header));
+  const uint32_t header[4] = {c.width, c.height, static_cast<uint32_t>(c.positions.size() / 3),
+                              c.varying_count};
+  out.write(tri1 ? kMagic1 : kMagic2, 4);
+  out.write(reinterpret_cast<const char*>(header), tri1 ? 12 : 16);
   for (size_t v = 0; v < c.positions.size(); ++v) {
-    const float f[8] = {c.positions[v].x,    c.positions[v].y,   c.positions[v].z,
-                        c.positions[v].w,    c.colors[v * 4],    c.colors[v * 4 + 1],
-                        c.colors[v * 4 + 2], c.colors[v * 4 + 3]};
-    out.write(reinterpret_cast<const char*>(f), sizeof(f));
+    fill(v);
+    out.write(reinterpret_cast<const char*>(vertex.data()),
+              static_cast<std::streamsize>(floats * sizeof(float)));
   }
   if (!out.flush()) throw Error(ErrorCode::kIo, path.string() + ": write failed");
 }

@@ -112,8 +112,78 @@ Bounds Scene::bounds() const {
   return b;
 }
 
+namespace {
+
+std::array<float, 16> to_array(const glm::mat4& m) {
+  std::array<float, 16> a;
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r)
+      a[c * 4 + r] = m[c][r];
+  }
+  return a;
+}
+
+// The objects through the vertex stage's transform: eye-space position (varyings 0..2) and
+// normal (3..5), the vertex colour (6..9).
+void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pipeline,
+                      const Scene& scene) {
+  const float aspect = static_cast<float>(target.width()) / static_cast<float>(target.height());
+  pipeline.roles = {6, 3, 0};
+  VertexShader shader;
+  shader.kind = VertexShaderKind::kTransform;
+  shader.transform.view = to_array(scene.camera.view());
+  shader.transform.projection = to_array(scene.camera.projection(aspect, pipeline.clip_depth));
+  shader.transform.normal_stream = 1;
+  shader.transform.space = VaryingSpace::kEye;
+  // Both faces lit, as shade_vertices lights them (meshes with inconsistent winding).
+  pipeline.phong.two_sided = true;
+  if (pipeline.shader == FragmentShader::kPhong && pipeline.phong.light_count == 0) {
+    // The scene's directional light, in eye space.
+    const glm::vec3 d = glm::mat3(scene.camera.view()) * scene.light.direction;
+    Light light;
+    light.kind = LightKind::kDirectional;
+    light.direction = {d.x, d.y, d.z};
+    light.diffuse = {scene.light.color.r, scene.light.color.g, scene.light.color.b};
+    light.specular = light.diffuse;
+    pipeline.phong.lights[0] = light;
+    pipeline.phong.light_count = 1;
+    pipeline.phong.ambient = {scene.light.ambient, scene.light.ambient, scene.light.ambient};
+    pipeline.phong.ka = 1.0f;
+    pipeline.phong.kd = 1.0f - scene.light.ambient;
+    pipeline.phong.ks = scene.light.specular;
+    pipeline.phong.shininess = scene.light.shininess;
+  }
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    Mesh normals_only;  // a mesh without normals gets smooth ones
+    const Mesh* mesh = &o.mesh;
+    if (o.mesh.normals.size() != o.mesh.positions.size()) {
+      normals_only = o.mesh;
+      compute_normals(normals_only);
+      mesh = &normals_only;
+    }
+    std::vector<glm::vec4> colors = mesh->colors;
+    colors.resize(mesh->positions.size(), glm::vec4(1.0f));
+    const VertexStream streams[] = {{{&mesh->positions.data()->x, mesh->positions.size() * 3}, 3},
+                                    {{&mesh->normals.data()->x, mesh->normals.size() * 3}, 3},
+                                    {{&colors.data()->x, colors.size() * 4}, 4}};
+    shader.transform.model = to_array(o.model);
+    pipeline.object_id = static_cast<uint32_t>(i + 1);
+    renderer.draw_vertices(target, pipeline, shader,
+                           {streams, mesh->positions.size(), mesh->indices});
+  }
+}
+
+}  // namespace
+
 void draw_scene(Renderer& renderer, Framebuffer& target, const PipelineState& pipeline,
-                const Scene& scene) {
+                const Scene& scene, SceneShading shading) {
+  if (shading == SceneShading::kPerPixel || pipeline.output != TargetOutput::kColor) {
+    PipelineState p = pipeline;
+    if (shading == SceneShading::kPerPixel) p.shader = FragmentShader::kPhong;
+    draw_transformed(renderer, target, p, scene);
+    return;
+  }
   const float aspect = static_cast<float>(target.width()) / static_cast<float>(target.height());
   const glm::mat4 view_projection =
       scene.camera.projection(aspect, pipeline.clip_depth) * scene.camera.view();

@@ -88,7 +88,7 @@ bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
 
 bool same_bits(const tessera::Capture& a, const tessera::Capture& b) {
   return a.width == b.width && a.height == b.height && same_bytes(a.positions, b.positions) &&
-         same_bytes(a.colors, b.colors);
+         same_bytes(a.varyings, b.varyings);
 }
 
 // The capture the bytes hold, read as capture.hpp says (only for well-formed bytes).
@@ -100,7 +100,7 @@ tessera::Capture expected_capture(const uint8_t* data, size_t size) {
     c.positions.push_back(
         {f32(data + v), f32(data + v + 4), f32(data + v + 8), f32(data + v + 12)});
     for (size_t k = 0; k < 4; ++k)
-      c.colors.push_back(f32(data + v + 16 + 4 * k));
+      c.varyings.push_back(f32(data + v + 16 + 4 * k));
   }
   return c;
 }
@@ -123,12 +123,12 @@ tessera::Capture arbitrary_capture(const uint8_t* data, size_t size) {
   for (size_t i = 0; i < positions; ++i)
     c.positions.push_back({next(), next(), next(), next()});
   for (size_t i = 0; i < colors; ++i)
-    c.colors.push_back(next());
+    c.varyings.push_back(next());
   return c;
 }
 
 bool saveable(const tessera::Capture& c) {
-  if (c.positions.size() % 3 != 0 || c.colors.size() != c.positions.size() * 4) return false;
+  if (c.positions.size() % 3 != 0 || c.varyings.size() != c.positions.size() * 4) return false;
   if (c.width < 1 || c.height < 1 || c.width > tessera::kMaxFramebufferSize ||
       c.height > tessera::kMaxFramebufferSize) {
     return false;
@@ -137,7 +137,7 @@ bool saveable(const tessera::Capture& c) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.w))
       return false;
   }
-  for (float f : c.colors) {
+  for (float f : c.varyings) {
     if (!std::isfinite(f)) return false;
   }
   return true;

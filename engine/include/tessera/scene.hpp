@@ -73,9 +73,18 @@ struct Scene {
 // The built-in default scene: lit, overlapping objects on a ground plane, 49,920 triangles.
 Scene make_demo_scene();
 
-// Draws every object of the scene, lit per vertex, with the scene's camera and the given
-// pipeline (its clip_depth selects the projection).
+// How draw_scene shades the objects' colour: lit per vertex (shade_vertices, Gouraud) or per
+// pixel (FragmentShader::kPhong).
+enum class SceneShading { kPerVertex, kPerPixel };
+
+// Draws every object of the scene with the scene's camera and the given pipeline (its
+// clip_depth selects the projection). With pipeline.output kColor the objects are lit as
+// `shading` says; per pixel, by pipeline.phong's lights when it has any (in eye space, the
+// eye at the origin), else by the scene's light, with each vertex's colour as the base. With a
+// vision output (PipelineState::output) the objects go through the vertex stage's transform:
+// normals and positions in eye space, object IDs 1, 2, ... in scene order (0 is left for the
+// background).
 void draw_scene(Renderer& renderer, Framebuffer& target, const PipelineState& pipeline,
-                const Scene& scene);
+                const Scene& scene, SceneShading shading = SceneShading::kPerVertex);
 
 }  // namespace tessera

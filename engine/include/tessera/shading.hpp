@@ -78,13 +78,15 @@ inline constexpr uint32_t kMaxLights = 8;
 //   I = ka Ia + sum over lights of att (kd max(0, N.L) Id + ks max(0, R.V)^n Is)
 // per channel, and the colour is clamp(I x base, 0, 1) in RGB with
 // the base's alpha. base = base_color, times the colour varyings when the draw has all four.
-// The specular term is 0 where N.L <= 0.
+// The specular term is 0 where N.L <= 0. With two_sided (OpenGL's two-sided lighting), N is
+// turned toward the eye where N.V < 0, so both faces of a surface are lit alike.
 struct PhongState {
   std::array<float, 4> base_color{1, 1, 1, 1};
   float ka = 0.1f, kd = 0.7f, ks = 0.2f;
   float shininess = 32;                   // n
   std::array<float, 3> ambient{1, 1, 1};  // Ia
   std::array<float, 3> eye{0, 0, 0};      // in the lights' space
+  bool two_sided = false;
   uint32_t light_count = 0;               // 0..kMaxLights
   std::array<Light, kMaxLights> lights{};
 };

@@ -33,8 +33,9 @@ Vec3 normalized(const Vec3& v) {
 
 std::array<float, 4> phong(const PhongState& state, const Vec3& normal, const Vec3& position,
                            const std::array<double, 4>& base) {
-  const Vec3 n = normalized(normal);
+  Vec3 n = normalized(normal);
   const Vec3 view = normalized(minus(to_double(state.eye), position));
+  if (state.two_sided && dot(n, view) < 0.0) n = {-n[0], -n[1], -n[2]};
   Vec3 intensity;
   for (int c = 0; c < 3; ++c)
     intensity[c] = double{state.ka} * state.ambient[c];
