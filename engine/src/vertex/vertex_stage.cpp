@@ -229,9 +229,20 @@ void shade(tbb::task_arena& arena, int64_t simd_target, const VertexShader& shad
                                      ? static_cast<uint32_t>(shader.transform.normal_stream)
                                      : 0;
 
+  Float4* pos = positions.data();
+  float* var = varyings.data();
+  // A batch's outputs (clip x, y, z, w, then `written` varyings, structures of arrays) into
+  // the draw's positions and its first `written` varyings per vertex.
+  const auto scatter = [&](const float* out, size_t first, size_t count, uint32_t written) {
+    for (size_t i = 0; i < count; ++i) {
+      pos[first + i] = {out[i], out[kVertexBatch + i], out[2 * kVertexBatch + i],
+                        out[3 * kVertexBatch + i]};
+      float* dst = var + (first + i) * per_vertex;
+      for (uint32_t k = 0; k < written; ++k)
+        dst[k] = out[(4 + k) * kVertexBatch + i];
+    }
+  };
   const auto batch = [&](size_t first, size_t count) {
-    Float4* pos = positions.data();
-    float* var = varyings.data();
     switch (shader.kind) {
       case VertexShaderKind::kPassThrough: {
         const VertexStream& st = input.streams[0];
@@ -252,13 +263,7 @@ void shade(tbb::task_arena& arena, int64_t simd_target, const VertexShader& shad
         }
         transform(matrices, in, normal_stream, static_cast<uint32_t>(count), out);
         const uint32_t written = matrices.has_normal ? 6 : 3;
-        for (size_t i = 0; i < count; ++i) {
-          pos[first + i] = {out[i], out[kVertexBatch + i], out[2 * kVertexBatch + i],
-                            out[3 * kVertexBatch + i]};
-          float* dst = var + (first + i) * per_vertex;
-          for (uint32_t k = 0; k < written; ++k)
-            dst[k] = out[(4 + k) * kVertexBatch + i];
-        }
+        scatter(out, first, count, written);
         copy_streams(input, matrices.has_normal ? shader.transform.normal_stream : -1, first, count,
                      per_vertex, written, var);
         return;
@@ -270,13 +275,7 @@ void shade(tbb::task_arena& arena, int64_t simd_target, const VertexShader& shad
           gather(input.streams[s], first, count, in + s * 4 * kVertexBatch);
         shader.user(
             VertexBatch(static_cast<uint32_t>(first), static_cast<uint32_t>(count), in, out));
-        for (size_t i = 0; i < count; ++i) {
-          pos[first + i] = {out[i], out[kVertexBatch + i], out[2 * kVertexBatch + i],
-                            out[3 * kVertexBatch + i]};
-          float* dst = var + (first + i) * per_vertex;
-          for (uint32_t k = 0; k < per_vertex; ++k)
-            dst[k] = out[(4 + k) * kVertexBatch + i];
-        }
+        scatter(out, first, count, per_vertex);
         return;
       }
     }
