@@ -17,11 +17,14 @@ if(TESSERA_HWY_DISABLED_TARGETS)
 endif()
 # Translation units that must leave out more targets (setup_kernel.cpp) add to
 # TESSERA_HWY_DISABLED_TARGETS_EXPR rather than replace it.
+# These are directory properties of Tessera's top directory, inherited by its subdirectories:
+# every Tessera translation unit (libraries, tests, benchmarks, samples) gets them and nothing
+# outside Tessera does, since a parent project's directories do not inherit from a
+# subproject's. The public headers do not include Highway, so consumers need none of it.
 add_compile_definitions("TESSERA_HWY_DISABLED_TARGETS_EXPR=(${_hwy_disabled})"
                         "HWY_DISABLED_TARGETS=TESSERA_HWY_DISABLED_TARGETS_EXPR")
 find_package(assimp CONFIG REQUIRED)
 find_package(OpenImageIO CONFIG REQUIRED)
-find_package(CLI11 CONFIG REQUIRED)
 
 # (Debian 12 ships OpenImageIO's CMake targets referring to /usr/bin/iconvert # Debian 12's OpenImageIO target names co., so
 # scripts/install-deps.sh installs openimageio-tools too.)
@@ -43,6 +46,9 @@ foreach(_oiio_target OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
 endforeach()
 target_link_libraries(tessera_openimageio INTERFACE OpenImageIO::OpenImageIO)
 
+if(TESSERA_BUILD_SAMPLES OR TESSERA_BUILD_BENCHMARKS)
+  find_package(CLI11 CONFIG REQUIRED)
+endif()
 if(TESSERA_BUILD_TESTS)
   find_package(GTest CONFIG REQUIRED)
 endif()
