@@ -1,5 +1,6 @@
 // Writing and reading images (PNG, EXR, and whatever else OpenImageIO knows by the file
-// extension).
+// extension). Part of Tessera::io (the tessera_io library), which links OpenImageIO and
+// Assimp; the core library (Tessera::tessera) needs neither.
 #pragma once
 
 #include <cstdint>
