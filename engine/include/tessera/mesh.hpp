@@ -8,6 +8,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "tessera/export.hpp"
+
 namespace tessera {
 
 struct Mesh {
@@ -25,11 +27,11 @@ struct Bounds {
 };
 
 // Smooth vertex normals from the triangles (area-weighted).
-void compute_normals(Mesh& mesh);
+TESSERA_API void compute_normals(Mesh& mesh);
 
-Bounds mesh_bounds(const Mesh& mesh);
+TESSERA_API Bounds mesh_bounds(const Mesh& mesh);
 
 // Appends `other` to `mesh`.
-void append_mesh(Mesh& mesh, const Mesh& other);
+TESSERA_API void append_mesh(Mesh& mesh, const Mesh& other);
 
 }  // namespace tessera

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "tessera/export.hpp"
 #include "tessera/mesh.hpp"
 
 namespace tessera {
@@ -17,13 +18,13 @@ namespace tessera {
 // position, anything Assimp cannot read) or one without triangles, with the file name and the
 // reason in a one-line message. Loads are serialized: Assimp's logger, which load_mesh listens
 // to during the import, is one per process.
-Mesh load_mesh(const std::filesystem::path& path);
+TESSERA_API Mesh load_mesh(const std::filesystem::path& path);
 
 // Loads every vertex of every mesh in the file (of triangles, lines or points alike, e.g. a
 // PLY point cloud with no faces), with node transforms applied, as a point cloud: positions
 // and colours as load_mesh takes them, normals (0, 0, 1), no indices. Same checks and errors
 // as load_mesh, except that a file without triangles is fine; one without vertices is
 // Error(kInvalidInput).
-Mesh load_point_cloud(const std::filesystem::path& path);
+TESSERA_API Mesh load_point_cloud(const std::filesystem::path& path);
 
 }  // namespace tessera
