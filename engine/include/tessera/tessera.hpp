@@ -13,3 +13,4 @@
 #include "tessera/scene.hpp"
 #include "tessera/shading.hpp"
 #include "tessera/types.hpp"
+#include "tessera/version.hpp"
