@@ -27,6 +27,7 @@
 #include <CLI/CLI.hpp>
 
 #include "benchmarks/frame_times.hpp"
+#include "tessera/io.hpp"
 #include "tessera/tessera.hpp"
 
 namespace {

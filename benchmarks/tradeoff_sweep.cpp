@@ -25,6 +25,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "benchmarks/frame_times.hpp"
+#include "tessera/io.hpp"
 #include "tessera/tessera.hpp"
 
 namespace {

@@ -1,4 +1,5 @@
-# Finds the Debian-packaged dependencies (scripts/install-deps.sh installs them).
+# Finds the Debian-packaged dependencies (scripts/install-deps.sh installs them): the core
+# library's always, the others only for the parts that are built.
 
 find_package(glm CONFIG REQUIRED)
 find_package(TBB CONFIG REQUIRED)
@@ -17,32 +18,39 @@ if(TESSERA_HWY_DISABLED_TARGETS)
 endif()
 # Translation units that must leave out more targets (setup_kernel.cpp) add to
 # TESSERA_HWY_DISABLED_TARGETS_EXPR rather than replace it.
+# These are directory properties of Tessera's top directory, inherited by its subdirectories:
+# every Tessera translation unit (libraries, tests, benchmarks, samples) gets them and nothing
+# outside Tessera does, since a parent project's directories do not inherit from a
+# subproject's. The public headers do not include Highway, so consumers need none of it.
 add_compile_definitions("TESSERA_HWY_DISABLED_TARGETS_EXPR=(${_hwy_disabled})"
                         "HWY_DISABLED_TARGETS=TESSERA_HWY_DISABLED_TARGETS_EXPR")
-find_package(assimp CONFIG REQUIRED)
-find_package(OpenImageIO CONFIG REQUIRED)
-find_package(CLI11 CONFIG REQUIRED)
 
-# (Debian 12 ships OpenImageIO's CMake targets referring to /usr/bin/iconvert # Debian 12's OpenImageIO target names co., so
-# scripts/install-deps.sh installs openimageio-tools too.)
-# Debian 12's OpenImageIO target names /usr/include/opencv4 as an include directory even
-# when OpenCV is not installed, which makes every consumer fail to configure. Tessera uses
-# no OpenCV, so it links through a copy of the target's interface without that directory.
-add_library(tessera_openimageio INTERFACE)
-foreach(_oiio_target OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
-  get_target_property(_dirs ${_oiio_target} INTERFACE_INCLUDE_DIRECTORIES)
-  if(_dirs)
-    list(FILTER _dirs EXCLUDE REGEX "opencv")
-    set_property(TARGET ${_oiio_target} PROPERTY INTERFACE_INCLUDE_DIRECTORIES "${_dirs}")
-  endif()
-  get_target_property(_sys ${_oiio_target} INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
-  if(_sys)
-    list(FILTER _sys EXCLUDE REGEX "opencv")
-    set_property(TARGET ${_oiio_target} PROPERTY INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${_sys}")
-  endif()
-endforeach()
-target_link_libraries(tessera_openimageio INTERFACE OpenImageIO::OpenImageIO)
-
+if(TESSERA_BUILD_IO)
+  find_package(assimp CONFIG REQUIRED)
+  # Debian 12's OpenImageIO targets refer to its command-line tools (/usr/bin/iconvert and
+  # others), which must exist for the package to load, so scripts/install-deps.sh installs
+  # openimageio-tools too.
+  find_package(OpenImageIO CONFIG REQUIRED)
+  # Debian 12's OpenImageIO target names /usr/include/opencv4 as an include directory even
+  # when OpenCV is not installed, which makes every consumer fail to configure. Tessera uses
+  # no OpenCV, so the imported targets' interfaces (in Tessera's directories) lose that
+  # directory before tessera_io links them.
+  foreach(_oiio_target OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
+    get_target_property(_dirs ${_oiio_target} INTERFACE_INCLUDE_DIRECTORIES)
+    if(_dirs)
+      list(FILTER _dirs EXCLUDE REGEX "opencv")
+      set_property(TARGET ${_oiio_target} PROPERTY INTERFACE_INCLUDE_DIRECTORIES "${_dirs}")
+    endif()
+    get_target_property(_sys ${_oiio_target} INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
+    if(_sys)
+      list(FILTER _sys EXCLUDE REGEX "opencv")
+      set_property(TARGET ${_oiio_target} PROPERTY INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${_sys}")
+    endif()
+  endforeach()
+endif()
+if(TESSERA_BUILD_SAMPLES OR TESSERA_BUILD_BENCHMARKS)
+  find_package(CLI11 CONFIG REQUIRED)
+endif()
 if(TESSERA_BUILD_TESTS)
   find_package(GTest CONFIG REQUIRED)
 endif()

@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "simd/targets.hpp"
+#include "tessera/io.hpp"
 #include "tessera/tessera.hpp"
 
 namespace {

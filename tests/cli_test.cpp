@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "tessera/io.hpp"
 #include "tessera/tessera.hpp"
 #include "tests/temp_dir.hpp"
 

@@ -1,4 +1,4 @@
-// Mesh loading (mesh.hpp): small OBJ, PLY and glTF files written here load into the triangles,
+// Mesh loading (mesh_io.hpp): small OBJ, PLY and glTF files written here load into the triangles,
 // colours and normals they describe; malformed ones are an Error with a one-line message that
 // names the file and the problem, never a crash or an abort inside Assimp; and the models that
 // ship with Assimp (scripts/install-deps.sh installs them) load or are rejected as they should.
@@ -14,6 +14,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "tessera/io.hpp"
 #include "tessera/tessera.hpp"
 #include "tests/file_error.hpp"
 #include "tests/temp_dir.hpp"

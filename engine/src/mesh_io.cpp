@@ -1,5 +1,6 @@
 // Mesh loading through Assimp (OBJ, glTF 2.0, PLY and the other formats it reads), flattened
-// into one triangle mesh, plus the small mesh utilities samples need.
+// into one triangle mesh. Part of the tessera_io library (Tessera::io); the mesh utilities it
+// uses are the core library's (mesh.cpp).
 //
 // Assimp 5.2 is lenient in ways a renderer cannot be: its glTF 2 importer drops faces with
 // out-of-range indices and only logs a warning; its PLY importer turns faces that reference
@@ -35,7 +36,7 @@
 #include <glm/geometric.hpp>
 
 #include "tessera/error.hpp"
-#include "tessera/mesh.hpp"
+#include "tessera/mesh_io.hpp"
 
 namespace tessera {
 
@@ -627,56 +628,6 @@ Mesh load_mesh(const std::filesystem::path& path) {
 
 Mesh load_point_cloud(const std::filesystem::path& path) {
   return load(path, true);
-}
-
-void compute_normals(Mesh& mesh) {
-  // Normals do not depend on the mesh's scale, but float products of its edges do: past
-  // coordinates of about 2^31 a cross product's squared length overflows (the normal comes out
-  // 0), past 2^63 the cross product itself (inf / inf, NaN). So the positions are scaled by the
-  // power of two that brings the largest coordinate into [0.5, 1). That is exact: a mesh whose
-  // products neither overflow nor underflow gets the same bits as unscaled.
-  float largest = 0.0f;
-  for (const glm::vec3& p : mesh.positions)
-    largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  int exponent = 0;
-  if (std::isfinite(largest)) std::frexp(largest, &exponent);
-  const auto at = [&](uint32_t i) {
-    return glm::vec3(std::ldexp(mesh.positions[i].x, -exponent),
-                     std::ldexp(mesh.positions[i].y, -exponent),
-                     std::ldexp(mesh.positions[i].z, -exponent));
-  };
-  mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
-  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-    const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
-    // The cross product's length is twice the triangle's area: an area-weighted sum.
-    const glm::vec3 n = glm::cross(at(b) - at(a), at(c) - at(a));
-    mesh.normals[a] += n;
-    mesh.normals[b] += n;
-    mesh.normals[c] += n;
-  }
-  for (glm::vec3& n : mesh.normals) {
-    const float len = glm::length(n);
-    n = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
-  }
-}
-
-Bounds mesh_bounds(const Mesh& mesh) {
-  if (mesh.positions.empty()) return {};
-  Bounds b{mesh.positions[0], mesh.positions[0]};
-  for (const glm::vec3& p : mesh.positions) {
-    b.min = glm::min(b.min, p);
-    b.max = glm::max(b.max, p);
-  }
-  return b;
-}
-
-void append_mesh(Mesh& mesh, const Mesh& other) {
-  const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
-  mesh.positions.insert(mesh.positions.end(), other.positions.begin(), other.positions.end());
-  mesh.normals.insert(mesh.normals.end(), other.normals.begin(), other.normals.end());
-  mesh.colors.insert(mesh.colors.end(), other.colors.begin(), other.colors.end());
-  for (uint32_t i : other.indices)
-    mesh.indices.push_back(base + i);
 }
 
 }  // namespace tessera

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "tessera/error.hpp"
-#include "tessera/mesh.hpp"
+#include "tessera/mesh_io.hpp"
 
 namespace {
 

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "tessera/export.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/types.hpp"
 
@@ -29,15 +30,15 @@ struct Capture {
 // file size, a varying count above 32, a zero or oversized frame, or a NaN/Inf position or
 // varying, Error(kOutOfMemory) when the triangles do not fit in memory; the message names the
 // file.
-Capture load_capture(const std::filesystem::path& path);
+TESSERA_API Capture load_capture(const std::filesystem::path& path);
 // Writes a TRI1 capture when varying_count is 4 (the same data), TRI2 otherwise, and only what
 // load_capture accepts: Error(kInvalidArgument) for sizes that do not match, a varying count
 // above 32 or a frame size out of 1..kMaxFramebufferSize, Error(kInvalidInput) for a NaN/Inf
 // value, all before the file is touched; Error(kIo) when it cannot be written.
-void save_capture(const std::filesystem::path& path, const Capture& capture);
+TESSERA_API void save_capture(const std::filesystem::path& path, const Capture& capture);
 
 // The state a capture is replayed with: OpenGL depth convention, depth test LESS, depth
 // cleared to far, no culling.
-PipelineState capture_pipeline();
+TESSERA_API PipelineState capture_pipeline();
 
 }  // namespace tessera

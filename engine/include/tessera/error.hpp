@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "tessera/export.hpp"
+
 namespace tessera {
 
 enum class ErrorCode {
@@ -16,7 +18,7 @@ enum class ErrorCode {
   kUnsupported,      // a valid state that the chosen backend cannot draw (it names the state)
 };
 
-class Error : public std::runtime_error {
+class TESSERA_API Error : public std::runtime_error {
  public:
   Error(ErrorCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
   ErrorCode code() const noexcept { return code_; }

@@ -8,6 +8,8 @@
 #include <memory>
 #include <vector>
 
+#include "tessera/export.hpp"
+
 namespace tessera {
 
 enum class ColorFormat { kRGBA8, kRGBA32F };
@@ -35,7 +37,7 @@ struct FramebufferAccess;
 struct FramebufferStorage;  // internal
 }  // namespace detail
 
-class Framebuffer {
+class TESSERA_API Framebuffer {
  public:
   // Throws Error(kInvalidArgument) for a zero or oversized side or an unsupported sample
   // count, Error(kOutOfMemory) past kMaxFramebufferBytes. Cleared to colour 0 and depth 1.

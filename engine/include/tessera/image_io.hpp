@@ -1,5 +1,6 @@
 // Writing and reading images (PNG, EXR, and whatever else OpenImageIO knows by the file
-// extension).
+// extension). Part of Tessera::io (the tessera_io library), which links OpenImageIO and
+// Assimp; the core library (Tessera::tessera) needs neither.
 #pragma once
 
 #include <cstdint>
@@ -7,14 +8,16 @@
 #include <span>
 #include <vector>
 
+#include "tessera/export.hpp"
+
 namespace tessera {
 
 // Pixels top row first, `channels` values per pixel. Throws Error(kIo) naming the file when
 // it cannot be written, Error(kInvalidArgument) when the pixel count does not match.
-void write_image(const std::filesystem::path& path, uint32_t width, uint32_t height,
-                 uint32_t channels, std::span<const uint8_t> pixels);
-void write_image(const std::filesystem::path& path, uint32_t width, uint32_t height,
-                 uint32_t channels, std::span<const float> pixels);
+TESSERA_API void write_image(const std::filesystem::path& path, uint32_t width, uint32_t height,
+                             uint32_t channels, std::span<const uint8_t> pixels);
+TESSERA_API void write_image(const std::filesystem::path& path, uint32_t width, uint32_t height,
+                             uint32_t channels, std::span<const float> pixels);
 
 // An image read back from a file: float values, 8-bit files scaled to 0..1, top row first.
 struct Image {
@@ -29,6 +32,6 @@ struct Image {
 };
 
 // Throws Error(kIo) naming the file when it cannot be opened or decoded.
-Image read_image(const std::filesystem::path& path);
+TESSERA_API Image read_image(const std::filesystem::path& path);
 
 }  // namespace tessera

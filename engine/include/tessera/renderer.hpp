@@ -6,6 +6,7 @@
 #include <memory>
 #include <span>
 
+#include "tessera/export.hpp"
 #include "tessera/framebuffer.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/primitives.hpp"
@@ -139,7 +140,7 @@ struct Counters {
   uint64_t polygons_submitted = 0;
 };
 
-class Renderer {
+class TESSERA_API Renderer {
  public:
   explicit Renderer(const RendererOptions& options = {});
   ~Renderer();

@@ -10,6 +10,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "tessera/export.hpp"
 #include "tessera/mesh.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
@@ -17,7 +18,7 @@
 
 namespace tessera {
 
-struct Camera {
+struct TESSERA_API Camera {
   glm::vec3 eye{0.0f, 0.0f, 5.0f};
   glm::vec3 target{0.0f};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
@@ -38,8 +39,9 @@ struct Camera {
 
 // A camera looking at the bounds from `direction` (towards the eye), framing them with a small
 // margin, near and far planes fitted around them.
-Camera frame_bounds(const Bounds& bounds, float aspect, glm::vec3 direction = {0.55f, 0.45f, 1.0f},
-                    float fov_y_degrees = 40.0f);
+TESSERA_API Camera frame_bounds(const Bounds& bounds, float aspect,
+                                glm::vec3 direction = {0.55f, 0.45f, 1.0f},
+                                float fov_y_degrees = 40.0f);
 
 struct DirectionalLight {
   glm::vec3 direction{-0.4f, -0.8f, -0.5f};  // direction the light travels, world space
@@ -51,18 +53,19 @@ struct DirectionalLight {
 
 // Phong lighting (ambient + diffuse + specular) evaluated per vertex: the Gouraud colours of
 // the mesh seen from `eye`. Positions and normals are transformed by `model` first.
-std::vector<float> shade_vertices(const Mesh& mesh, const glm::mat4& model, glm::vec3 eye,
-                                  const DirectionalLight& light);
+TESSERA_API std::vector<float> shade_vertices(const Mesh& mesh, const glm::mat4& model,
+                                              glm::vec3 eye, const DirectionalLight& light);
 
 // Transforms positions to clip space by `mvp`.
-std::vector<Float4> to_clip_space(std::span<const glm::vec3> positions, const glm::mat4& mvp);
+TESSERA_API std::vector<Float4> to_clip_space(std::span<const glm::vec3> positions,
+                                              const glm::mat4& mvp);
 
 struct SceneObject {
   Mesh mesh;
   glm::mat4 model{1.0f};
 };
 
-struct Scene {
+struct TESSERA_API Scene {
   std::vector<SceneObject> objects;
   Camera camera;
   DirectionalLight light;
@@ -71,7 +74,7 @@ struct Scene {
 };
 
 // The built-in default scene: lit, overlapping objects on a ground plane, 49,920 triangles.
-Scene make_demo_scene();
+TESSERA_API Scene make_demo_scene();
 
 // How draw_scene shades the objects' colour: lit per vertex (shade_vertices, Gouraud) or per
 // pixel (FragmentShader::kPhong).
@@ -84,7 +87,7 @@ enum class SceneShading { kPerVertex, kPerPixel };
 // vision output (PipelineState::output) the objects go through the vertex stage's transform:
 // normals and positions in eye space, object IDs 1, 2, ... in scene order (0 is left for the
 // background).
-void draw_scene(Renderer& renderer, Framebuffer& target, const PipelineState& pipeline,
-                const Scene& scene, SceneShading shading = SceneShading::kPerVertex);
+TESSERA_API void draw_scene(Renderer& renderer, Framebuffer& target, const PipelineState& pipeline,
+                            const Scene& scene, SceneShading shading = SceneShading::kPerVertex);
 
 }  // namespace tessera

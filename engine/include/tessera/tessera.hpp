@@ -1,11 +1,11 @@
 // Tessera: a tile-based, multithreaded, SIMD software rasterizer. This header includes the
-// whole public API.
+// public API of the core library (the CMake target Tessera::tessera), which needs only oneTBB,
+// Highway and GLM. Mesh and image files are tessera/io.hpp, in the separate Tessera::io.
 #pragma once
 
 #include "tessera/capture.hpp"
 #include "tessera/error.hpp"
 #include "tessera/framebuffer.hpp"
-#include "tessera/image_io.hpp"
 #include "tessera/mesh.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/primitives.hpp"
@@ -14,3 +14,4 @@
 #include "tessera/shading.hpp"
 #include "tessera/types.hpp"
 #include "tessera/vertex.hpp"
+#include "tessera/version.hpp"
