@@ -162,14 +162,14 @@ TEST(CaptureFile, TruncatedHeaderIsRejected) {
   TempDir dir;
   write_file(dir / "header.tri", tri1_bytes(4, 4, 1, {}).substr(0, 10));
   expect_load_error(dir / "header.tri", ErrorCode::kInvalidInput,
-                    {"truncated TRI1 header", "10 bytes"});
+                    {"truncated capture header", "10 bytes"});
 }
 
 TEST(CaptureFile, EmptyFileIsATruncatedHeader) {
   TempDir dir;
   write_file(dir / "zero.tri", "");
   expect_load_error(dir / "zero.tri", ErrorCode::kInvalidInput,
-                    {"truncated TRI1 header", "0 bytes"});
+                    {"truncated capture header", "0 bytes"});
 }
 
 TEST(CaptureFile, CountLargerThanTheFileIsRejected) {

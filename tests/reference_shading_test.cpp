@@ -449,6 +449,15 @@ TEST(ReferenceShading, BadShadingStateIsRejectedNamingItAndLeavesTheTargetAlone)
     bad.push_back(b);
   }
   {
+    Bad b{"phong.lights[0].spot_exponent", {}};
+    b.pipeline.shader = FragmentShader::kPhong;
+    b.pipeline.roles = {0, 0, 3};
+    b.pipeline.phong.light_count = 1;
+    b.pipeline.phong.lights[0].kind = LightKind::kSpot;
+    b.pipeline.phong.lights[0].spot_exponent = -2;
+    bad.push_back(b);
+  }
+  {
     Bad b{"RGBA32F", {}, ColorFormat::kRGBA8};
     b.pipeline.output = TargetOutput::kPrimitiveId;
     bad.push_back(b);

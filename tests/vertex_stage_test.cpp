@@ -104,6 +104,24 @@ TEST(VertexStage, TheTransformsPositionsAndNormalsAreTheMatrixProducts) {
       EXPECT_NEAR(got[c], clip[c], 1e-5 * (1 + std::abs(clip[c]))) << v << " clip " << c;
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(out.varyings[v * 6 + c], eye[c], 1e-5 * (1 + std::abs(eye[c]))) << v;
+    // The normal through the inverse transpose of view * model's 3x3 part: for every eye-space
+    // tangent direction t = M d (d any object-space direction orthogonal to the normal n),
+    // (M^-T n) . (M d) = n . d = 0. Checked for two directions orthogonal to this corner's
+    // diagonal normal, which a plain M n (not the inverse transpose) fails under the
+    // non-uniform scale.
+    const std::array<double, 3> n = {kCorners[v * 3], kCorners[v * 3 + 1], kCorners[v * 3 + 2]};
+    const std::array<std::array<double, 4>, 2> tangents = {
+        std::array<double, 4>{n[1], -n[0], 0, 0}, std::array<double, 4>{0, n[2], -n[1], 0}};
+    for (const auto& d : tangents) {
+      const auto te = times(t.view, times(t.model, d));
+      double dot = 0, length = 0;
+      for (int c = 0; c < 3; ++c) {
+        dot += out.varyings[v * 6 + 3 + c] * te[c];
+        length += out.varyings[v * 6 + 3 + c] * out.varyings[v * 6 + 3 + c];
+      }
+      EXPECT_NEAR(dot, 0.0, 1e-5) << v;
+      EXPECT_GT(length, 0.01) << v;
+    }
   }
   // Face normals through the same stage: the +x face normal against the face's tangents.
   const std::vector<float> face = {0, 0, 0};
@@ -228,8 +246,14 @@ TEST(VertexStage, AUserShaderThatThrowsEndsTheDrawBeforeAnythingIsDrawn) {
   Framebuffer fb({16, 16, 1});
   fb.clear_color({0.5f, 0.5f, 0.5f, 0.5f});
   const std::vector<uint8_t> before = fb.read_rgba8();
-  EXPECT_THROW(renderer.draw_vertices(fb, {}, shader, {streams, 8, kCubeIndices}),
-               std::runtime_error);
+  try {
+    renderer.draw_vertices(fb, {}, shader, {streams, 8, kCubeIndices});
+    ADD_FAILURE() << "the shader's exception was lost";
+  } catch (const Error& e) {
+    ADD_FAILURE() << "a tessera::Error instead of the shader's exception: " << e.what();
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "shader says no");
+  }
   EXPECT_EQ(fb.read_rgba8(), before);
 }
 
@@ -266,6 +290,8 @@ TEST(VertexStage, BadStreamsAndShadersAreRejectedNamingTheProblem) {
       {"normal_stream 2", {{data, 3}, {data, 3}}, 3, bad_normal},
       {"no callable", {{data, 3}}, 3, user},
       {"writes 33 varyings", {{data, 3}}, 3, many},
+      {"at most 2^32 - 1 vertices", {{data, 3}}, size_t{1} << 33, transform},
+      {"3 vertices need 4294967299", {{data, 3, 0x80000000u}}, 3, transform},
   };
   for (const Bad& b : bad) {
     Renderer renderer;

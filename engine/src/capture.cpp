@@ -67,7 +67,7 @@ Capture load_capture(const std::filesystem::path& path) {
   // The magic and TRI1's header, then TRI2's varying count.
   unsigned char header[20];
   if (file_size < 16 || !in.read(reinterpret_cast<char*>(header), 16)) {
-    bad(path, "truncated TRI1 header (" + std::to_string(file_size) + " bytes, need 16)");
+    bad(path, "truncated capture header (" + std::to_string(file_size) + " bytes, need 16)");
   }
   const bool tri1 = std::memcmp(header, kMagic1, 4) == 0;
   if (!tri1 && std::memcmp(header, kMagic2, 4) != 0) {

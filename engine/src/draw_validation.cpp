@@ -214,8 +214,16 @@ void validate_phong(const PhongState& phong) {
     check_finite(light.direction, name + ".direction");
     check_finite(light.diffuse, name + ".diffuse");
     check_finite(light.specular, name + ".specular");
-    check_finite(light.spot_cos_cutoff, name + ".spot_cos_cutoff");
-    check_finite(light.spot_exponent, name + ".spot_exponent");
+    if (!(light.spot_cos_cutoff >= -1.0f && light.spot_cos_cutoff <= 1.0f)) {
+      fail(ErrorCode::kInvalidArgument, name + ".spot_cos_cutoff " +
+                                            std::to_string(light.spot_cos_cutoff) +
+                                            " is not a cosine (-1..1)");
+    }
+    if (!(light.spot_exponent >= 0.0f && std::isfinite(light.spot_exponent))) {
+      fail(ErrorCode::kInvalidArgument, name + ".spot_exponent " +
+                                            std::to_string(light.spot_exponent) +
+                                            " is not a finite value of at least 0");
+    }
     if (light.kind != LightKind::kPoint && light.direction == std::array<float, 3>{0, 0, 0}) {
       fail(ErrorCode::kInvalidArgument, name + ".direction is zero");
     }

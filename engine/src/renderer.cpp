@@ -171,6 +171,13 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
 void Renderer::draw_vertices(Framebuffer& target, const PipelineState& pipeline,
                              const VertexShader& shader, const VertexInput& input) {
   const uint32_t per_vertex = vertex::validate(shader, input);
+  // The shading state against the varyings the stage will write, before the stage runs.
+  const size_t triangles = (input.indices.empty() ? input.vertex_count : input.indices.size()) / 3;
+  validate_shading(target, pipeline, {{}, {}, per_vertex, {}}, triangles);
+  if (impl_->options.backend == Backend::kFast) {
+    const std::string unsupported = fast::FastRasterizer::unsupported_state(pipeline, per_vertex);
+    if (!unsupported.empty()) throw Error(ErrorCode::kUnsupported, unsupported);
+  }
   out_of_memory_as_error("draw_vertices", impl_->options, [&] {
     vertex::shade(impl_->arena, impl_->fast.simd_target(), shader, input, per_vertex,
                   impl_->shaded_positions, impl_->shaded_varyings);

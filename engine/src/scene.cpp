@@ -3,11 +3,14 @@
 #include "tessera/scene.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
+
+#include "engine/src/vertex/vertex_stage.hpp"
 
 namespace tessera {
 
@@ -133,7 +136,12 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
   shader.kind = VertexShaderKind::kTransform;
   shader.transform.view = to_array(scene.camera.view());
   shader.transform.projection = to_array(scene.camera.projection(aspect, pipeline.clip_depth));
-  shader.transform.normal_stream = 1;
+  // The normal stream only where a normal is read (a model whose 3x3 part is singular has no
+  // normal matrix, which other outputs do not need).
+  const bool normals =
+      pipeline.output == TargetOutput::kNormal ||
+      (pipeline.output == TargetOutput::kColor && pipeline.shader == FragmentShader::kPhong);
+  shader.transform.normal_stream = normals ? 1 : -1;
   shader.transform.space = VaryingSpace::kEye;
   // Both faces lit, as shade_vertices lights them (meshes with inconsistent winding).
   pipeline.phong.two_sided = true;
@@ -153,24 +161,34 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
     pipeline.phong.ks = scene.light.specular;
     pipeline.phong.shininess = scene.light.shininess;
   }
+  // Every object's vertex shader and streams are checked before any object is drawn, so that a
+  // bad object leaves the target as it was.
+  std::vector<Mesh> computed(scene.objects.size());  // smooth normals for meshes without
+  std::vector<std::vector<glm::vec4>> colours(scene.objects.size());
+  std::vector<std::array<VertexStream, 3>> streams(scene.objects.size());
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
-    Mesh normals_only;  // a mesh without normals gets smooth ones
     const Mesh* mesh = &o.mesh;
     if (o.mesh.normals.size() != o.mesh.positions.size()) {
-      normals_only = o.mesh;
-      compute_normals(normals_only);
-      mesh = &normals_only;
+      computed[i] = o.mesh;
+      compute_normals(computed[i]);
+      mesh = &computed[i];
     }
-    std::vector<glm::vec4> colors = mesh->colors;
-    colors.resize(mesh->positions.size(), glm::vec4(1.0f));
-    const VertexStream streams[] = {{{&mesh->positions.data()->x, mesh->positions.size() * 3}, 3},
-                                    {{&mesh->normals.data()->x, mesh->normals.size() * 3}, 3},
-                                    {{&colors.data()->x, colors.size() * 4}, 4}};
+    colours[i] = mesh->colors;
+    colours[i].resize(mesh->positions.size(), glm::vec4(1.0f));
+    streams[i] = {VertexStream{{&mesh->positions.data()->x, mesh->positions.size() * 3}, 3},
+                  VertexStream{{&mesh->normals.data()->x, mesh->normals.size() * 3}, 3},
+                  VertexStream{{&colours[i].data()->x, colours[i].size() * 4}, 4}};
+    shader.transform.model = to_array(o.model);
+    vertex::validate(shader, {streams[i], mesh->positions.size(), mesh->indices});
+  }
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    const Mesh* mesh = computed[i].positions.empty() ? &o.mesh : &computed[i];
     shader.transform.model = to_array(o.model);
     pipeline.object_id = static_cast<uint32_t>(i + 1);
     renderer.draw_vertices(target, pipeline, shader,
-                           {streams, mesh->positions.size(), mesh->indices});
+                           {streams[i], mesh->positions.size(), mesh->indices});
   }
 }
 

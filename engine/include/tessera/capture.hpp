@@ -5,6 +5,9 @@
 // TRI2 (little-endian): "TRI2"; uint32 width, height, triangle_count, varying count K (0 to
 // 32); then 3 x count vertices of 4 + K float32: clip-space x, y, z, w as in TRI1, then the K
 // varyings, all perspective-correct. A TRI1 capture is a TRI2 capture with K = 4, RGBA.
+// tessera-render reads a TRI2 capture's varyings 0..3 as RGBA for Gouraud shading and, for
+// per-pixel Phong, 0..2 as the eye-space normal, 3..5 as the eye-space position and 6..9 (when
+// K >= 10) as the base colour.
 #pragma once
 
 #include <cstdint>

@@ -87,7 +87,7 @@ struct PhongState {
   std::array<float, 3> ambient{1, 1, 1};  // Ia
   std::array<float, 3> eye{0, 0, 0};      // in the lights' space
   bool two_sided = false;
-  uint32_t light_count = 0;               // 0..kMaxLights
+  uint32_t light_count = 0;  // 0..kMaxLights
   std::array<Light, kMaxLights> lights{};
 };
 

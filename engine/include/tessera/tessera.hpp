@@ -13,5 +13,5 @@
 #include "tessera/scene.hpp"
 #include "tessera/shading.hpp"
 #include "tessera/types.hpp"
-#include "tessera/vertex.hpp"
 #include "tessera/version.hpp"
+#include "tessera/vertex.hpp"

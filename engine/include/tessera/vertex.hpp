@@ -29,8 +29,9 @@ inline constexpr uint32_t kVertexBatch = 64;
 // What a user vertex shader reads and writes for a batch of up to kVertexBatch vertices, as
 // structures of arrays: input(s, c)[i] is component c of stream s at vertex first + i (missing
 // components of a stream read as 0, 0, 0, 1, as in OpenGL), clip(c)[i] the clip-space position's
-// component c (x, y, z, w) it writes, varying(k)[i] varying k. Every output the draw declares
-// must be written for each of the `count` vertices.
+// component c (x, y, z, w) it writes, varying(k)[i] varying k, for stream < the draw's stream
+// count, component < 4 and k < VertexShader::user_varyings (the buffers hold no more). Every
+// output the draw declares must be written for each of the `count` vertices.
 class VertexBatch {
  public:
   uint32_t first;  // the index of the batch's first vertex in the streams

@@ -126,7 +126,10 @@ std::string FastRasterizer::unsupported_state(const PipelineState& pipeline,
   const std::string tail = " is not drawn by the fast engine yet (Backend::kReference draws it)";
   if (pipeline.shader != FragmentShader::kGouraud) return "shader kPhong" + tail;
   if (pipeline.output != TargetOutput::kColor) {
-    return "output " + std::to_string(static_cast<unsigned>(pipeline.output)) +
+    static constexpr const char* kNames[] = {"kColor",    "kEyeDepth",     "kNormal",
+                                             "kPosition", "kBarycentrics", "kPrimitiveId",
+                                             "kObjectId"};
+    return std::string("output ") + kNames[static_cast<unsigned>(pipeline.output)] +
            " (a vision output)" + tail;
   }
   const VaryingMode mode = pipeline.interpolation == Interpolation::kAffine

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 
+#include "tessera/types.hpp"
 #include "tessera/vertex.hpp"
 
 namespace tessera::vertex {
@@ -22,7 +23,7 @@ struct TransformMatrices {
 // A batch's buffers, structures of arrays of kVertexBatch floats: the inputs [stream][4],
 // the outputs [4 + kMaxVaryings] (clip x, y, z, w, then the varyings).
 inline constexpr uint32_t kBatchInputs = kMaxVertexStreams * 4;
-inline constexpr uint32_t kBatchOutputs = 4 + 32;
+inline constexpr uint32_t kBatchOutputs = 4 + kMaxVaryings;
 
 // clip, the position (varyings 0..2) and, with a normal, the normal (varyings 3..5) of `count`
 // vertices: the position is input stream 0 (x, y, z, w), the normal input stream

@@ -135,6 +135,10 @@ uint32_t validate(const VertexShader& shader, const VertexInput& input) {
     fail("vertex shader kind has the invalid value " +
          std::to_string(static_cast<unsigned>(shader.kind)));
   }
+  if (input.vertex_count > UINT32_MAX) {
+    fail("a vertex draw takes at most 2^32 - 1 vertices, got " +
+         std::to_string(input.vertex_count));
+  }
   if (input.streams.empty() || input.streams.size() > kMaxVertexStreams) {
     fail("a vertex draw takes 1 to " + std::to_string(kMaxVertexStreams) + " streams, got " +
          std::to_string(input.streams.size()));
@@ -150,10 +154,12 @@ uint32_t validate(const VertexShader& shader, const VertexInput& input) {
            std::to_string(st.components) + " components");
     }
     if (input.vertex_count == 0) continue;
-    const uint64_t needed =
-        uint64_t{st.offset} + (input.vertex_count - 1) * stride_of(st) + st.components;
-    if (needed > st.data.size()) {
-      fail(name + " holds " + std::to_string(st.data.size()) + " floats, but " +
+    // offset + (vertex_count - 1) * stride + components floats, compared without overflow
+    // (vertex_count < 2^32 and stride < 2^32: the product fits 64 bits).
+    const uint64_t size = st.data.size(), head = uint64_t{st.offset} + st.components;
+    const uint64_t needed = head + (input.vertex_count - 1) * stride_of(st);
+    if (needed > size) {
+      fail(name + " holds " + std::to_string(size) + " floats, but " +
            std::to_string(input.vertex_count) + " vertices need " + std::to_string(needed));
     }
   }
