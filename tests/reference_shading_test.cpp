@@ -512,6 +512,29 @@ TEST(ReferenceShading, TheFastEngineDrawsGouraudWithAnyVaryingCountAndRejectsThe
       }
     }
   }
+  // A triangle a clip plane cuts takes the fast setup's scalar path: its colour role too.
+  {
+    const Viewport vp{kSize, kSize};
+    Scene clipped;
+    clipped.positions = {
+        {0.0f, 0.5f, -0.5f, 1.0f}, vp.at(2, 30, 0.5, 1.5), vp.at(30, 28, 0.5, 2.0)};
+    clipped.count = 9;
+    for (uint32_t v = 0; v < 3; ++v) {
+      for (uint32_t i = 0; i < clipped.count; ++i)
+        clipped.varyings.push_back(static_cast<float>(i + 1) * 0.1f * static_cast<float>(v + 1));
+    }
+    PipelineState role;
+    role.roles.color = 5;
+    const std::vector<float> fast = render(role, clipped.input(), 1, Backend::kFast);
+    const std::vector<float> reference = render(role, clipped.input(), 1, Backend::kReference);
+    size_t covered = 0;
+    for (size_t i = 0; i < fast.size(); ++i) {
+      ASSERT_EQ(fast[i] == -1.0f, reference[i] == -1.0f) << i;
+      ASSERT_NEAR(fast[i], reference[i], 1e-4 * std::abs(reference[i]) + 1e-5) << i;
+      covered += reference[i] != -1.0f;
+    }
+    EXPECT_GT(covered, 200u);
+  }
   std::vector<std::pair<const char*, PipelineState>> unsupported(3);
   unsupported[0].first = "shader kPhong";
   unsupported[0].second.shader = FragmentShader::kPhong;
