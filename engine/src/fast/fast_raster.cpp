@@ -22,6 +22,7 @@
 #include "engine/src/fast/tile_raster.hpp"
 #include "engine/src/fast/triangle_setup.hpp"
 #include "engine/src/sample_positions.hpp"
+#include "engine/src/shading_state.hpp"
 #include "tessera/error.hpp"
 
 namespace tessera::fast {
@@ -132,13 +133,12 @@ std::string FastRasterizer::unsupported_state(const PipelineState& pipeline,
     return std::string("output ") + kNames[static_cast<unsigned>(pipeline.output)] +
            " (a vision output)" + tail;
   }
-  const VaryingMode mode = pipeline.interpolation == Interpolation::kAffine
-                               ? VaryingMode::kAffine
-                               : VaryingMode::kPerspective;
+  // The setup interpolates every colour channel as the pipeline's interpolation says.
+  const VaryingMode mode = default_mode(pipeline.interpolation);
   const uint32_t first = pipeline.roles.color;
   for (uint32_t c = first; c < std::min(attribute_count, first + 4); ++c) {
-    const VaryingMode m = pipeline.varying_modes[c];
-    if (m != VaryingMode::kDefault && m != mode) {
+    const VaryingMode m = resolved_mode(pipeline, c);
+    if (m != mode) {
       return "varying_modes[" + std::to_string(c) + "] = " +
              (m == VaryingMode::kFlat     ? "kFlat"
               : m == VaryingMode::kAffine ? "kAffine"

@@ -19,6 +19,7 @@
 #include "engine/src/clip.hpp"
 #include "engine/src/reference/reference_shade.hpp"
 #include "engine/src/sample_positions.hpp"
+#include "engine/src/shading_state.hpp"
 
 namespace tessera::reference {
 
@@ -81,13 +82,9 @@ FragmentInputs fragment_inputs(const PipelineState& pipeline, uint32_t attribute
   FragmentInputs f;
   f.varyings = attribute_count;
   f.values = attribute_count + (pipeline.output == TargetOutput::kBarycentrics ? 3 : 0);
-  const VaryingMode fallback = pipeline.interpolation == Interpolation::kAffine
-                                   ? VaryingMode::kAffine
-                                   : VaryingMode::kPerspective;
   for (uint32_t i = 0; i < f.values; ++i) {
-    const VaryingMode m =
-        i < attribute_count ? pipeline.varying_modes[i] : VaryingMode::kPerspective;
-    f.mode[i] = m == VaryingMode::kDefault ? fallback : m;
+    // The barycentric carriers after the varyings are perspective-correct.
+    f.mode[i] = i < attribute_count ? resolved_mode(pipeline, i) : VaryingMode::kPerspective;
     f.needs_q = f.needs_q || f.mode[i] == VaryingMode::kPerspective;
   }
   f.needs_q = f.needs_q || pipeline.output == TargetOutput::kEyeDepth;
