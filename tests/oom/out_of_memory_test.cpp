@@ -223,7 +223,9 @@ TEST_P(OutOfMemory, EveryFailedAllocationEndsTheDrawWithAnErrorAndLeavesItUsable
   fresh_options.hiz = false;
   const FramebufferDesc desc{kSize, kSize, c.samples};
   // Even vertex counts, so that a soup is also a line list.
-  const Soup first = soup(1, 400, 0.4f, 0.1f, 0.9f);
+  // The first draw is far smaller than the failing one (40 triangles against thousands), so
+  // the failing draw must grow the bin memory the first left, also at the smallest budget.
+  const Soup first = soup(1, 40, 0.4f, 0.1f, 0.9f);
   const Soup failing = soup(2, c.triangles, 0.06f, 0.2f, 0.8f);
   const Soup next = soup(3, 400, 0.4f, 0.1f, 0.9f);
   const std::string prefix = std::string(c.call) + ": out of memory";
