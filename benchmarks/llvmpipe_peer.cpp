@@ -27,6 +27,7 @@
 #include <CLI/CLI.hpp>
 
 #include "benchmarks/frame_times.hpp"
+#include "benchmarks/phong_workload.hpp"
 #include "tessera/io.hpp"
 #include "tessera/tessera.hpp"
 
@@ -46,6 +47,7 @@ struct Options {
   uint32_t threads = 1;
   uint32_t frames = 10;
   uint32_t samples = 1;
+  std::string shading = "gouraud";
   std::string write_png;
 };
 
@@ -199,10 +201,85 @@ void set_capture_state(uint32_t width, uint32_t height) {
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
 }
 
+// Per-pixel Phong in GLSL (benchmarks/phong_workload.hpp): Tessera's formula
+// (tessera/shading.hpp) with its TRI2 defaults and three point lights (c0 = 1: no attenuation).
+constexpr const char* kPhongVertexShader = R"(#version 120
+attribute vec4 clip;
+attribute vec3 normal;
+attribute vec3 position;
+attribute vec4 colour;
+varying vec3 v_normal;
+varying vec3 v_position;
+varying vec4 v_colour;
+void main() {
+  gl_Position = clip;
+  v_normal = normal;
+  v_position = position;
+  v_colour = colour;
+}
+)";
+constexpr const char* kPhongFragmentShader = R"(#version 120
+uniform vec3 lights[3];
+varying vec3 v_normal;
+varying vec3 v_position;
+varying vec4 v_colour;
+void main() {
+  vec3 n = normalize(v_normal);
+  vec3 v = normalize(-v_position);
+  vec3 intensity = vec3(0.1);
+  for (int l = 0; l < 3; ++l) {
+    vec3 to_light = normalize(lights[l] - v_position);
+    float n_dot_l = dot(n, to_light);
+    float specular = 0.0;
+    if (n_dot_l > 0.0) {
+      vec3 r = 2.0 * n_dot_l * n - to_light;
+      specular = 0.2 * pow(max(dot(r, v), 0.0), 32.0);
+    }
+    intensity += vec3(0.7 * max(n_dot_l, 0.0) + specular);
+  }
+  gl_FragColor = vec4(clamp(intensity * v_colour.rgb, 0.0, 1.0), v_colour.a);
+}
+)";
+
 void check_gl(const char* what) {
   const GLenum e = glGetError();
   if (e != GL_NO_ERROR)
     fail(tessera::ErrorCode::kInvalidInput, std::string(what) + ": GL error " + hex(e));
+}
+
+GLuint compile_shader(GLenum type, const char* source) {
+  const GLuint shader = glCreateShader(type);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[1024] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    fail(tessera::ErrorCode::kInvalidArgument, std::string("GLSL compile error: ") + log);
+  }
+  return shader;
+}
+
+// The Phong program with the Phong varyings' attributes bound to 0..4, in use.
+GLuint use_phong_program() {
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, compile_shader(GL_VERTEX_SHADER, kPhongVertexShader));
+  glAttachShader(program, compile_shader(GL_FRAGMENT_SHADER, kPhongFragmentShader));
+  const char* attributes[] = {"clip", "normal", "position", "colour"};
+  for (GLuint i = 0; i < 4; ++i)
+    glBindAttribLocation(program, i, attributes[i]);
+  glLinkProgram(program);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[1024] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    fail(tessera::ErrorCode::kInvalidArgument, std::string("GLSL link error: ") + log);
+  }
+  glUseProgram(program);
+  glUniform3fv(glGetUniformLocation(program, "lights"), 3, &tessera::bench::kPhongLights[0][0]);
+  return program;
 }
 
 // Renders one capture: K timed frames after one warm-up, prints the summary line, and writes
@@ -255,17 +332,44 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
   }
 
   // Upload once: the timed frames draw from a buffer object, as an application would.
-  const std::vector<float> vertices = interleave(capture);
+  const bool phong = o.shading == "phong";
+  std::vector<float> vertices;
+  if (phong) {
+    // x y z w, then the ten Phong varyings.
+    const std::vector<float> varyings = tessera::bench::phong_varyings(capture);
+    vertices.reserve(vertex_count * 14);
+    for (size_t i = 0; i < vertex_count; ++i) {
+      const tessera::Float4& p = capture.positions[i];
+      vertices.insert(vertices.end(), {p.x, p.y, p.z, p.w});
+      vertices.insert(vertices.end(), varyings.begin() + static_cast<std::ptrdiff_t>(10 * i),
+                      varyings.begin() + static_cast<std::ptrdiff_t>(10 * i + 10));
+    }
+  } else {
+    vertices = interleave(capture);
+  }
   GLuint vbo = 0;
   glGenBuffers(1, &vbo);
   glBindBuffer(GL_ARRAY_BUFFER, vbo);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
                vertices.data(), GL_STATIC_DRAW);
-  constexpr GLsizei kStride = 8 * sizeof(float);
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glVertexPointer(4, GL_FLOAT, kStride, nullptr);
-  glEnableClientState(GL_COLOR_ARRAY);
-  glColorPointer(4, GL_FLOAT, kStride, reinterpret_cast<const void*>(4 * sizeof(float)));
+  GLuint program = 0;
+  if (phong) {
+    program = use_phong_program();
+    constexpr GLsizei kStride = 14 * sizeof(float);
+    const GLint sizes[] = {4, 3, 3, 4};
+    const size_t offsets[] = {0, 4, 7, 10};
+    for (GLuint i = 0; i < 4; ++i) {
+      glEnableVertexAttribArray(i);
+      glVertexAttribPointer(i, sizes[i], GL_FLOAT, GL_FALSE, kStride,
+                            reinterpret_cast<const void*>(offsets[i] * sizeof(float)));
+    }
+  } else {
+    constexpr GLsizei kStride = 8 * sizeof(float);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glVertexPointer(4, GL_FLOAT, kStride, nullptr);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glColorPointer(4, GL_FLOAT, kStride, reinterpret_cast<const void*>(4 * sizeof(float)));
+  }
   check_gl("setting up the capture state");
 
   const auto count = static_cast<GLsizei>(vertex_count);
@@ -306,12 +410,13 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
     frame_times += buf;
   }
   std::printf(
-      "llvmpipe workload=%s threads=%u frames=%u median_ms=%.3f min_ms=%.3f max_ms=%.3f "
-      "mtri_s=%.3f samples=%u lp_num_threads=%u lp_threads_seen=%u empty_ms=%.3f "
+      "llvmpipe workload=%s shading=%s threads=%u frames=%u median_ms=%.3f min_ms=%.3f "
+      "max_ms=%.3f mtri_s=%.3f samples=%u lp_num_threads=%u lp_threads_seen=%u empty_ms=%.3f "
       "triangles=%zu size=%ux%u times_ms=%s\n",
-      workload.c_str(), o.threads, o.frames, median, *std::min_element(times.begin(), times.end()),
-      *std::max_element(times.begin(), times.end()), mtri_s, o.samples, lp_num_threads,
-      threads_seen, median_of(empty), triangles, width, height, frame_times.c_str());
+      workload.c_str(), o.shading.c_str(), o.threads, o.frames, median,
+      *std::min_element(times.begin(), times.end()), *std::max_element(times.begin(), times.end()),
+      mtri_s, o.samples, lp_num_threads, threads_seen, median_of(empty), triangles, width, height,
+      frame_times.c_str());
   std::fflush(stdout);
 
   if (!o.write_png.empty()) {
@@ -339,6 +444,7 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
   }
 
   glDeleteBuffers(1, &vbo);
+  if (program != 0) glDeleteProgram(program);
   if (msaa.fbo != 0) {
     glDeleteFramebuffers(1, &msaa.fbo);
     glDeleteRenderbuffers(1, &msaa.color);
@@ -393,6 +499,11 @@ int main(int argc, char** argv) {
   app.add_option("--samples", o.samples,
                  "1, or 4 for 4x MSAA in a multisampled FBO when the context offers it")
       ->check(CLI::IsMember({1u, 4u}))
+      ->capture_default_str();
+  app.add_option("--shading", o.shading,
+                 "gouraud (the capture's colours), or phong: per-pixel Phong in GLSL of the "
+                 "varyings benchmarks/phong_workload.hpp makes from the capture")
+      ->check(CLI::IsMember({"gouraud", "phong"}))
       ->capture_default_str();
   app.add_option("--write-png", o.write_png,
                  "write llvmpipe's image of the capture (top row first, like tessera-render); "

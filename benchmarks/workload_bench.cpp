@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "benchmarks/frame_times.hpp"
+#include "benchmarks/phong_workload.hpp"
 #include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 
@@ -58,8 +59,8 @@ const tessera::Capture* load(const std::string& name) {
   return &cache.emplace(name, tessera::load_capture(path)).first->second;
 }
 
-// What one case measured, for the ratios: keyed by workload, samples and threads.
-using CaseKey = std::tuple<std::string, uint32_t, uint32_t>;
+// What one case measured, for the ratios: keyed by workload, shading, samples and threads.
+using CaseKey = std::tuple<std::string, std::string, uint32_t, uint32_t>;
 struct Measured {
   double tessera_ms = 0.0;  // median frame on the best target, colour on
   std::string tessera_target;
@@ -80,9 +81,11 @@ void set_frame_counters(benchmark::State& state, double median_ms, double triang
   }
 }
 
-void BM_Workload(benchmark::State& state, std::string name, tessera::SimdTarget target,
-                 std::string target_name, bool best, uint32_t threads, uint32_t samples,
-                 bool color) {
+// shading "gouraud" draws the capture's colours; "phong" its Phong variant
+// (benchmarks/phong_workload.hpp).
+void BM_Workload(benchmark::State& state, std::string name, std::string shading,
+                 tessera::SimdTarget target, std::string target_name, bool best, uint32_t threads,
+                 uint32_t samples, bool color) {
   const tessera::Capture* capture = load(name);
   if (capture == nullptr) {
     state.SkipWithError(
@@ -97,12 +100,16 @@ void BM_Workload(benchmark::State& state, std::string name, tessera::SimdTarget 
   options.raster_counters = false;  // timed as users run it; samples are counted once below
   tessera::Renderer renderer(options);
   tessera::Framebuffer fb({capture->width, capture->height, samples, tessera::ColorFormat::kRGBA8});
-  tessera::PipelineState pipeline = tessera::capture_pipeline();
+  const bool phong = shading == "phong";
+  tessera::PipelineState pipeline =
+      phong ? tessera::bench::phong_pipeline() : tessera::capture_pipeline();
   pipeline.color_write = color;
+  const std::vector<float> varyings =
+      phong ? tessera::bench::phong_varyings(*capture) : std::vector<float>{};
   tessera::DrawInput input;
   input.positions = capture->positions;
-  input.attributes = capture->varyings;
-  input.attribute_count = 4;
+  input.attributes = phong ? varyings : capture->varyings;
+  input.attribute_count = phong ? tessera::bench::kPhongVaryings : 4;
   renderer.draw(fb, pipeline, input);  // warm-up: the renderer's bins and setups reach size
   uint64_t samples_covered = 0;        // per frame, from one counted draw
   {
@@ -126,7 +133,7 @@ void BM_Workload(benchmark::State& state, std::string name, tessera::SimdTarget 
   set_frame_counters(state, median, static_cast<double>(capture->positions.size() / 3),
                      static_cast<double>(samples_covered));
   if (best && color) {
-    Measured& m = measured()[{name, samples, threads}];
+    Measured& m = measured()[{name, shading, samples, threads}];
     m.tessera_ms = median;
     m.tessera_target = target_name;
   }
@@ -135,8 +142,8 @@ void BM_Workload(benchmark::State& state, std::string name, tessera::SimdTarget 
 #ifdef TESSERA_LLVMPIPE_BENCH
 // Runs tessera_llvmpipe_bench on one capture and returns its output line ("llvmpipe ..."), or
 // an error message in `error`.
-std::string run_llvmpipe(const std::filesystem::path& capture, uint32_t threads, uint32_t samples,
-                         uint32_t frames, std::string& error) {
+std::string run_llvmpipe(const std::filesystem::path& capture, const std::string& shading,
+                         uint32_t threads, uint32_t samples, uint32_t frames, std::string& error) {
   const auto quote = [](const std::string& s) {
     std::string q = "'";
     for (const char c : s)
@@ -145,8 +152,8 @@ std::string run_llvmpipe(const std::filesystem::path& capture, uint32_t threads,
   };
   const std::string command = quote(TESSERA_LLVMPIPE_BENCH) + " --threads " +
                               std::to_string(threads) + " --samples " + std::to_string(samples) +
-                              " --frames " + std::to_string(frames) + " -- " +
-                              quote(capture.string()) + " 2>/dev/null";
+                              " --frames " + std::to_string(frames) + " --shading " + shading +
+                              " -- " + quote(capture.string()) + " 2>/dev/null";
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
   if (!pipe) {
     error = "cannot start " + std::string(TESSERA_LLVMPIPE_BENCH);
@@ -183,7 +190,8 @@ std::string field(const std::string& line, const std::string& key) {
   return "";
 }
 
-void BM_Llvmpipe(benchmark::State& state, std::string name, uint32_t threads, uint32_t samples) {
+void BM_Llvmpipe(benchmark::State& state, std::string name, std::string shading, uint32_t threads,
+                 uint32_t samples) {
   const std::filesystem::path path = workload_path(name);
   if (!std::filesystem::exists(path)) {
     state.SkipWithError(
@@ -195,7 +203,7 @@ void BM_Llvmpipe(benchmark::State& state, std::string name, uint32_t threads, ui
     frames = static_cast<uint32_t>(std::clamp(std::atol(env), 1L, 1000L));
   }
   std::string error;
-  const std::string line = run_llvmpipe(path, threads, samples, frames, error);
+  const std::string line = run_llvmpipe(path, shading, threads, samples, frames, error);
   if (!error.empty()) {
     state.SkipWithError(error.c_str());
     return;
@@ -227,7 +235,7 @@ void BM_Llvmpipe(benchmark::State& state, std::string name, uint32_t threads, ui
     state.SetIterationTime(median * 1e-3);
   const double triangles = std::atof(field(line, "triangles").c_str());
   set_frame_counters(state, median, triangles, 0.0);
-  Measured& m = measured()[{name, samples, threads}];
+  Measured& m = measured()[{name, shading, samples, threads}];
   m.llvmpipe_ms = median;
   if (m.tessera_ms > 0.0) state.counters["speedup"] = median / m.tessera_ms;
 }
@@ -260,29 +268,37 @@ void register_all() {
       available.push_back({t, tessera::simd::resolve_target(t.target) == automatic});
     }
   }
+  // Gouraud at one and four samples, colour and depth only; Phong (colour) at one sample.
   for (const char* w : workloads) {
-    for (uint32_t samples : {1u, 4u}) {
-      for (uint32_t threads : {1u, 2u}) {
-        for (const auto& [t, best] : available) {
-          for (bool color : {true, false}) {
-            const std::string label =
-                std::string(w) + "/fast/" + t.name + "/threads:" + std::to_string(threads) +
-                "/samples:" + std::to_string(samples) + (color ? "" : "/depth_only");
-            benchmark::RegisterBenchmark(label.c_str(), BM_Workload, w, t.target, t.name, best,
-                                         threads, samples, color)
-                ->Unit(benchmark::kMillisecond)
-                ->UseRealTime();
+    for (const char* shading : {"gouraud", "phong"}) {
+      const bool phong = std::string(shading) == "phong";
+      for (uint32_t samples : {1u, 4u}) {
+        if (phong && samples != 1) continue;
+        for (uint32_t threads : {1u, 2u}) {
+          for (const auto& [t, best] : available) {
+            for (bool color : {true, false}) {
+              if (phong && !color) continue;
+              const std::string label = std::string(w) + (phong ? "/phong" : "") + "/fast/" +
+                                        t.name + "/threads:" + std::to_string(threads) +
+                                        "/samples:" + std::to_string(samples) +
+                                        (color ? "" : "/depth_only");
+              benchmark::RegisterBenchmark(label.c_str(), BM_Workload, w, shading, t.target, t.name,
+                                           best, threads, samples, color)
+                  ->Unit(benchmark::kMillisecond)
+                  ->UseRealTime();
+            }
           }
-        }
 #ifdef TESSERA_LLVMPIPE_BENCH
-        // After Tessera's cases of the same workload, sample and thread count, for the ratio.
-        const std::string label = std::string(w) + "/llvmpipe/threads:" + std::to_string(threads) +
-                                  "/samples:" + std::to_string(samples);
-        benchmark::RegisterBenchmark(label.c_str(), BM_Llvmpipe, w, threads, samples)
-            ->Unit(benchmark::kMillisecond)
-            ->UseManualTime()
-            ->Iterations(1);
+          // After Tessera's cases of the same workload, sample and thread count, for the ratio.
+          const std::string label = std::string(w) + (phong ? "/phong" : "") +
+                                    "/llvmpipe/threads:" + std::to_string(threads) +
+                                    "/samples:" + std::to_string(samples);
+          benchmark::RegisterBenchmark(label.c_str(), BM_Llvmpipe, w, shading, threads, samples)
+              ->Unit(benchmark::kMillisecond)
+              ->UseManualTime()
+              ->Iterations(1);
 #endif
+        }
       }
     }
   }
@@ -297,14 +313,14 @@ void print_ratios(FILE* out) {
       std::fprintf(
           out,
           "\nTessera (the automatic SIMD target, colour) against llvmpipe, median ms per frame:\n\n"
-          "| workload | samples | threads | Tessera target | Tessera ms | llvmpipe ms | "
-          "llvmpipe / Tessera |\n| --- | ---: | ---: | --- | ---: | ---: | ---: |\n");
+          "| workload | shading | samples | threads | Tessera target | Tessera ms | llvmpipe ms | "
+          "llvmpipe / Tessera |\n| --- | --- | ---: | ---: | --- | ---: | ---: | ---: |\n");
       header = true;
     }
-    const auto& [workload, samples, threads] = key;
-    std::fprintf(out, "| %s | %u | %u | %s | %.1f | %.1f | %.2fx |\n", workload.c_str(), samples,
-                 threads, m.tessera_target.c_str(), m.tessera_ms, m.llvmpipe_ms,
-                 m.llvmpipe_ms / m.tessera_ms);
+    const auto& [workload, shading, samples, threads] = key;
+    std::fprintf(out, "| %s | %s | %u | %u | %s | %.1f | %.1f | %.2fx |\n", workload.c_str(),
+                 shading.c_str(), samples, threads, m.tessera_target.c_str(), m.tessera_ms,
+                 m.llvmpipe_ms, m.llvmpipe_ms / m.tessera_ms);
   }
 }
 
