@@ -23,6 +23,13 @@ struct TileRect {
   uint32_t count() const { return (uint32_t{x1} - x0 + 1) * (uint32_t{y1} - y0 + 1); }
 };
 
+// The tiles of side 2^log2 pixels under a bounding box's pixels x0..x1, y0..y1 (on screen: not
+// negative).
+inline TileRect tile_rect(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint32_t log2) {
+  return {static_cast<uint16_t>(x0 >> log2), static_cast<uint16_t>(y0 >> log2),
+          static_cast<uint16_t>(x1 >> log2), static_cast<uint16_t>(y1 >> log2)};
+}
+
 class Bins {
  public:
   // Bytes held per tile of the grid (its count and its list's start), whatever is binned.

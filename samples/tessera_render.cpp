@@ -56,7 +56,7 @@ struct Options {
   bool smooth_lines = false;
   std::string backend = "fast";
   std::vector<float> clear{0.08f, 0.09f, 0.11f, 1.0f};
-  std::string shading = "gouraud";
+  std::string shading;              // empty: phong for meshes and the demo, gouraud otherwise
   std::vector<std::string> lights;  // "x,y,z" each
 };
 
@@ -216,7 +216,10 @@ bool has_extension(const std::string& path, const char* ext) {
 // more, the base colour 6..9; lights in eye space. Meshes go through the vertex stage (eye-space
 // position, normal and colour; scene.hpp), lights in world space.
 void apply_shading(const Options& o, bool is_capture, Job& job, tessera::PipelineState& pipeline) {
-  const std::string& s = o.shading;
+  // Meshes and the demo are lit per pixel unless asked otherwise.
+  const std::string s = !o.shading.empty()                           ? o.shading
+                        : is_capture || job.mode != Mode::kTriangles ? "gouraud"
+                                                                     : "phong";
   const bool vision = s == "normals" || s == "depth" || s == "ids" || s == "objects";
   if (s != "gouraud" && job.mode != Mode::kTriangles) {
     bad_argument("--shading " + s + ": not with --wireframe or --points");
@@ -549,11 +552,11 @@ int main(int argc, char** argv) {
   app.add_flag("--smooth-lines", o.smooth_lines, "antialiased wireframe lines");
   app.add_flag("--float", o.float_color, "float colour buffer (implied by an .exr output)");
   app.add_option("--shading", o.shading,
-                 "gouraud (vertex colours; meshes lit per vertex), flat (captures), phong (per "
-                 "pixel), or a float output into an .exr file: normals, depth (eye), ids "
-                 "(triangle index), objects (object ID)")
-      ->check(CLI::IsMember({"gouraud", "flat", "phong", "normals", "depth", "ids", "objects"}))
-      ->capture_default_str();
+                 "phong (per pixel: the default for meshes and the demo), gouraud (vertex "
+                 "colours, the default for captures; meshes lit per vertex), flat (captures), or "
+                 "a float output into an .exr file: normals, depth (eye), ids (triangle index), "
+                 "objects (object ID)")
+      ->check(CLI::IsMember({"gouraud", "flat", "phong", "normals", "depth", "ids", "objects"}));
   app.add_option("--light", o.lights,
                  "--shading phong: a point light at x,y,z (eye space for captures, world space "
                  "for meshes); repeatable, up to 8")

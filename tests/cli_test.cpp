@@ -147,27 +147,29 @@ TEST(Cli, Tri2CapturesDrawWithTheShadingAsked) {
   TempDir dir;
   write_phong_capture(dir / "phong.tri");
   const std::string in = quoted(dir / "phong.tri") + " ";
-  // Per-pixel Phong with a light in front of the plane's centre: brightest under the light.
-  RunResult r = run_render(dir, in + "--shading phong --backend reference --light 0,0,-1 -o " +
-                                    quoted(dir / "phong.png"));
-  ASSERT_TRUE(r.exited && r.exit_code == 0) << r.err;
-  const Image lit = read_image(dir / "phong.png");
-  EXPECT_GT(lit.at(8, 8)[0], lit.at(1, 1)[0] + 0.1f);  // (0, 0) in eye space against (-1.75, 1.75)
-  EXPECT_GT(lit.at(1, 1)[0], 0.1f);
+  // Per-pixel Phong with a light in front of the plane's centre: brightest under the light, the
+  // same in both backends to a step.
+  for (const char* backend : {"fast", "reference"}) {
+    RunResult r = run_render(dir, in + "--shading phong --backend " + backend +
+                                      " --light 0,0,-1 -o " + quoted(dir / "phong.png"));
+    ASSERT_TRUE(r.exited && r.exit_code == 0) << r.err;
+    const Image lit = read_image(dir / "phong.png");
+    EXPECT_GT(lit.at(8, 8)[0], lit.at(1, 1)[0] + 0.1f) << backend;  // (0, 0) in eye space
+    EXPECT_GT(lit.at(1, 1)[0], 0.1f) << backend;                    // against (-1.75, 1.75)
+  }
   // Gouraud reads varyings 0..3: the normal (0, 0, 1) and x as alpha (at least 1 right of
   // x = 0.5, where the PNG reader, which multiplies by alpha, keeps blue).
-  r = run_render(dir, in + "-o " + quoted(dir / "gouraud.png"));
+  RunResult r = run_render(dir, in + "-o " + quoted(dir / "gouraud.png"));
   ASSERT_TRUE(r.exited && r.exit_code == 0) << r.err;
   EXPECT_EQ(read_image(dir / "gouraud.png").at(13, 5)[2], 1.0f);
-  // Normals into an EXR.
-  // The fast engine does not draw vision outputs yet: it says so and names the way out.
-  r = run_render(dir, in + "--shading normals -o " + quoted(dir / "n.exr"));
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("kReference"), std::string::npos) << r.err;
-  r = run_render(dir, in + "--shading normals --backend reference -o " + quoted(dir / "n.exr"));
-  ASSERT_TRUE(r.exited && r.exit_code == 0) << r.err;
-  EXPECT_EQ(read_image(dir / "n.exr").at(3, 3)[2], 1.0f);
-  EXPECT_EQ(read_image(dir / "n.exr").at(3, 3)[0], 0.0f);
+  // Normals into an EXR, from either backend.
+  for (const char* backend : {"fast", "reference"}) {
+    r = run_render(dir,
+                   in + "--shading normals --backend " + backend + " -o " + quoted(dir / "n.exr"));
+    ASSERT_TRUE(r.exited && r.exit_code == 0) << r.err;
+    EXPECT_EQ(read_image(dir / "n.exr").at(3, 3)[2], 1.0f) << backend;
+    EXPECT_EQ(read_image(dir / "n.exr").at(3, 3)[0], 0.0f) << backend;
+  }
   // Float outputs need a float file; lights need Phong.
   r = run_render(dir, in + "--shading depth -o " + quoted(dir / "d.png"));
   EXPECT_EQ(r.exit_code, 1);

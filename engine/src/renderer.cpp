@@ -78,14 +78,6 @@ RendererOptions checked(const RendererOptions& o) {
   return o;
 }
 
-// Error(kUnsupported) for a shading state with `varyings` varyings that the backend does not
-// draw (fast::FastRasterizer::unsupported_state).
-void check_backend_draws(Backend backend, const PipelineState& pipeline, uint32_t varyings) {
-  if (backend != Backend::kFast) return;
-  const std::string unsupported = fast::FastRasterizer::unsupported_state(pipeline, varyings);
-  if (!unsupported.empty()) throw Error(ErrorCode::kUnsupported, unsupported);
-}
-
 }  // namespace
 
 struct Renderer::Impl {
@@ -136,7 +128,6 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
     const bool check_in_setup = !cull_non_finite && impl_->options.backend == Backend::kFast &&
                                 fast::FastRasterizer::checks_finite_values(input, pipeline);
     validate_draw(target, pipeline, input, !cull_non_finite && !check_in_setup, &impl_->arena);
-    check_backend_draws(impl_->options.backend, pipeline, input.attribute_count);
     // Pending clears are left to the fast engine's tiles (draw_triangles writes them for the
     // reference).
     detail::FramebufferStorage& storage = detail::FramebufferAccess::deferred_storage(target);
@@ -178,7 +169,6 @@ void Renderer::draw_vertices(Framebuffer& target, const PipelineState& pipeline,
   // The shading state against the varyings the stage will write, before the stage runs.
   const size_t triangles = (input.indices.empty() ? input.vertex_count : input.indices.size()) / 3;
   validate_shading(target, pipeline, {{}, {}, per_vertex, {}}, triangles);
-  check_backend_draws(impl_->options.backend, pipeline, per_vertex);
   out_of_memory_as_error("draw_vertices", impl_->options, [&] {
     vertex::shade(impl_->arena, impl_->fast.simd_target(), shader, input, per_vertex,
                   impl_->shaded_positions, impl_->shaded_varyings);
@@ -196,7 +186,8 @@ void Renderer::draw_triangles(detail::FramebufferStorage& storage, const Pipelin
     if (pipeline.depth_test && pipeline.depth_write) storage.hiz_valid = false;
     reference::draw(storage, pipeline, input, impl_->counters, primitive_ids);
   } else {
-    impl_->fast.draw(impl_->arena, storage, pipeline, input, impl_->counters, check_finite);
+    impl_->fast.draw(impl_->arena, storage, pipeline, input, impl_->counters, check_finite,
+                     primitive_ids);
   }
 }
 

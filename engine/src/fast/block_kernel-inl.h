@@ -44,6 +44,7 @@
 #include <hwy/highway.h>
 
 #include "engine/src/fast/unorm8-inl.h"
+#include "engine/src/shade/shade-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace tessera::fast::HWY_NAMESPACE {
@@ -348,6 +349,34 @@ inline void triangle_hiz_range(const TileContext& tc, const TriangleSetup& t, fl
   hiz_range(tc, t.z_min - margin, t.z_max + margin, lo, hi);
 }
 
+// The colour write of lane group i of block `block`: RGBA lanes to the samples that passed
+// (passed(s); one sample: `any`), packed to RGBA8 (kClamp as pack_unorm8's) or stored as floats.
+template <ColorMode kColor, bool kMulti, bool kClamp, class DF, class VF, class MU, class Passed>
+HWY_INLINE void store_colour(DF df, const TileContext& tc, size_t block, size_t i, uint32_t samples,
+                             MU any, const Passed& passed, VF r, VF g, VF b, VF a) {
+  const hn::RebindToUnsigned<DF> du;
+  if constexpr (kColor == ColorMode::kRGBA8) {
+    const auto packed = pack_unorm8<kClamp>(df, r, g, b, a);
+    uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + block * 64 + i;
+    if (samples == 1) {
+      store_masked(packed, any, du, colour);
+    } else {
+      for (uint32_t s = 0; s < samples; ++s) {
+        store_masked(packed, passed(s), du, colour + s * kSamplePlane);
+      }
+    }
+  } else {
+    for (uint32_t s = 0; s < samples; ++s) {
+      const auto m = hn::RebindMask(df, kMulti ? passed(s) : any);
+      float* dst = tc.rgba32f + (block * 64 + s * kSamplePlane + i) * 4;
+      VF r0, g0, b0, a0;
+      hn::LoadInterleaved4(df, dst, r0, g0, b0, a0);
+      hn::StoreInterleaved4(hn::IfThenElse(m, r, r0), hn::IfThenElse(m, g, g0),
+                            hn::IfThenElse(m, b, b0), hn::IfThenElse(m, a, a0), df, dst);
+    }
+  }
+}
+
 // The planes' change from a block's first pixel centre to each of its pixels, gx * x + gy * y
 // (plane_at's inner sum, so base + offset is the same bits): the general path computes them once
 // per triangle, at its first covered block, for all its blocks.
@@ -391,6 +420,7 @@ struct TriangleState {
   int32_t sub_lo[3], sub_hi[3];
   float z_offset[16];
   PlaneOffsets* offsets = nullptr;  // the general path's (raster_block's kOffsets)
+  const float* planes = nullptr;    // a shaded draw's (TileContext::layout)
   uint32_t samples;
   int32_t px0, px1, py0, py1;  // the bounding box inside the tile
   int32_t tile_bx, tile_by;
@@ -403,8 +433,8 @@ struct TriangleState {
 // coverage bits, then the early depth test, shading once per pixel and the writes. Plane bases
 // are computed at the first lane group with coverage, so blocks the triangle misses cost only
 // their edge tests.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kSubBlocks,
-          bool kOffsets, class VI>
+template <DepthMode kDepth, ColorMode kColor, shade::Shader kShader, bool kMulti, bool kCount,
+          bool kSubBlocks, bool kOffsets, class VI>
 HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
                              VI lane_e0, VI lane_e1, VI lane_e2, int32_t bx, int32_t by,
                              const int32_t* e_block, uint32_t edge_mask, bool wide,
@@ -428,14 +458,18 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
     // The planes at the centre of the block's first pixel, relative to the plane origin.
     const double dx = bx * 8.0 - t.x0, dy = by * 8.0 - t.y0;
     z_base = static_cast<float>(t.z0 + t.z_dx * dx + t.z_dy * dy);
-    if constexpr (kColor != ColorMode::kOff) {
+    if constexpr (kColor != ColorMode::kOff && kShader == shade::Shader::kGouraud) {
       const float fdx = static_cast<float>(dx), fdy = static_cast<float>(dy);
       q_base = t.q0 + (t.q_dx * fdx + t.q_dy * fdy);
       for (int c = 0; c < 4; ++c)
         qa_base[c] = t.qa0[c] + (t.qa_dx[c] * fdx + t.qa_dy[c] * fdy);
     }
     if constexpr (kOffsets) {
-      if (!st.offsets->ready) compute_plane_offsets<kDepth, kColor>(t, *st.offsets);
+      if (!st.offsets->ready) {
+        compute_plane_offsets<kDepth,
+                              kShader == shade::Shader::kGouraud ? kColor : ColorMode::kOff>(
+            t, *st.offsets);
+      }
     }
     have_bases = true;
   };
@@ -582,7 +616,29 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       }
     }
 
-    if constexpr (kColor != ColorMode::kOff) {
+    if constexpr (kColor != ColorMode::kOff && kShader != shade::Shader::kGouraud) {
+      const auto any = pass_one;
+      if (hn::AllFalse(du, any)) continue;
+      if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
+      // The lanes' pixel offsets from the plane origin (the centre of pixel (t.x0, t.y0)), and
+      // each lane's first passing sample's offsets for pixels beyond the triangle's horizon.
+      const auto x = hn::Add(fx, hn::Set(df, static_cast<float>(bx * 8 - t.x0)));
+      const auto y = hn::Add(fy, hn::Set(df, static_cast<float>(by * 8 - t.y0)));
+      const auto first_sample = [&](hn::Vec<decltype(df)>& sx, hn::Vec<decltype(df)>& sy) {
+        sx = hn::Zero(df);
+        sy = hn::Zero(df);
+        for (uint32_t s = samples; s-- > 0;) {
+          const auto m = hn::RebindMask(df, kMulti ? passed(s) : any);
+          sx = hn::IfThenElse(m, hn::Set(df, tc.sample_fx[s]), sx);
+          sy = hn::IfThenElse(m, hn::Set(df, tc.sample_fy[s]), sy);
+        }
+      };
+      hn::Vec<decltype(df)> r, g, b, a;
+      shade::HWY_NAMESPACE::shade_fragments<kShader>(
+          df, *tc.layout, {t.q0, t.q_dx, t.q_dy, t.flat_q, st.planes}, x, y,
+          hn::RebindMask(df, any), first_sample, r, g, b, a);
+      store_colour<kColor, kMulti, true>(df, tc, block, i, samples, any, passed, r, g, b, a);
+    } else if constexpr (kColor != ColorMode::kOff) {
       // The passing lanes themselves (multisample: of any sample), not a bit set built from
       // them and tested again (a shorter chain ahead of the branch below).
       const auto any = pass_one;
@@ -632,27 +688,11 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
           load_channels(df, channel, r, g, b, a);
         }
       }
-      if constexpr (kColor == ColorMode::kRGBA8) {
-        // One sample: without the clamp where packs_without_clamp allows.
-        const auto packed = !kMulti && packs_without_clamp(t) ? pack_unorm8<false>(df, r, g, b, a)
-                                                              : pack_unorm8(df, r, g, b, a);
-        uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + block * 64 + i;
-        if (samples == 1) {
-          store_masked(packed, any, du, colour);
-        } else {
-          for (uint32_t s = 0; s < samples; ++s) {
-            store_masked(packed, passed(s), du, colour + s * kSamplePlane);
-          }
-        }
+      // One sample: RGBA8 without the clamp where packs_without_clamp allows.
+      if (!kMulti && packs_without_clamp(t)) {
+        store_colour<kColor, kMulti, false>(df, tc, block, i, samples, any, passed, r, g, b, a);
       } else {
-        for (uint32_t s = 0; s < samples; ++s) {
-          const auto m = hn::RebindMask(df, kMulti ? passed(s) : any);
-          float* dst = tc.rgba32f + (block * 64 + s * kSamplePlane + i) * 4;
-          hn::Vec<decltype(df)> r0, g0, b0, a0;
-          hn::LoadInterleaved4(df, dst, r0, g0, b0, a0);
-          hn::StoreInterleaved4(hn::IfThenElse(m, r, r0), hn::IfThenElse(m, g, g0),
-                                hn::IfThenElse(m, b, b0), hn::IfThenElse(m, a, a0), df, dst);
-        }
+        store_colour<kColor, kMulti, true>(df, tc, block, i, samples, any, passed, r, g, b, a);
       }
     }
   }
@@ -666,12 +706,13 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
 // loops (small triangles inline theirs); next to a block's 64 pixels the call costs little.
 // With and without the sub-block tests: a copy of its own for each, as the tests in the lane
 // loop, even skipped, cost the loop without them 1-3% (benchmarks/RESULTS.md decision 10).
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kSubBlocks, class VI>
+template <DepthMode kDepth, ColorMode kColor, shade::Shader kShader, bool kMulti, bool kCount,
+          bool kSubBlocks, class VI>
 HWY_NOINLINE void raster_block_outlined(const TileContext& tc, const TriangleSetup& t,
                                         TriangleState& st, VI lane_e0, VI lane_e1, VI lane_e2,
                                         int32_t bx, int32_t by, const int32_t* e_block,
                                         uint32_t edge_mask, bool wide, bool test_depth) {
-  raster_block<kDepth, kColor, kMulti, kCount, kSubBlocks, true>(
+  raster_block<kDepth, kColor, kShader, kMulti, kCount, kSubBlocks, true>(
       tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block, edge_mask, wide, test_depth);
 }
 
@@ -692,7 +733,8 @@ struct BlockTests {
 // A block that passed the corner test, with the edges crossing it in edge_mask (block_corner:
 // the edges' values at the corner of its sample area; z_corner: the depth plane's there):
 // counted, then Hi-Z, then rasterized.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
+template <DepthMode kDepth, ColorMode kColor, shade::Shader kShader, bool kMulti, bool kCount,
+          class VI>
 HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
                             const BlockTests& bt, Counters& counters, VI lane_e0, VI lane_e1,
                             VI lane_e2, int32_t bx, int32_t by, const int64_t* block_corner,
@@ -733,10 +775,10 @@ HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, Trian
     }
   }
   if (tc.sub_blocks) {
-    raster_block_outlined<kDepth, kColor, kMulti, kCount, true>(
+    raster_block_outlined<kDepth, kColor, kShader, kMulti, kCount, true>(
         tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block, edge_mask, wide, test_depth);
   } else {
-    raster_block_outlined<kDepth, kColor, kMulti, kCount, false>(
+    raster_block_outlined<kDepth, kColor, kShader, kMulti, kCount, false>(
         tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block, edge_mask, wide, test_depth);
   }
 }
@@ -745,7 +787,8 @@ HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, Trian
 // takes the corner test, stepped from block to block from `corner` (the edges' values at the
 // first block's corner): blocks outside an edge are rejected, the others visited. Without, all
 // are inside every edge (a coarse block's verdict) and visited untested.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
+template <DepthMode kDepth, ColorMode kColor, shade::Shader kShader, bool kMulti, bool kCount,
+          class VI>
 HWY_INLINE void visit_blocks(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
                              const BlockTests& bt, Counters& counters, VI lane_e0, VI lane_e1,
                              VI lane_e2, int32_t bx_begin, int32_t by_begin, int32_t bx_end,
@@ -773,9 +816,9 @@ HWY_INLINE void visit_blocks(const TileContext& tc, const TriangleSetup& t, Tria
       if (rejected) {
         if constexpr (kCount) ++counters.blocks_rejected;
       } else {
-        visit_block<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1,
-                                                    lane_e2, bx, by, block_corner, z_corner,
-                                                    edge_mask);
+        visit_block<kDepth, kColor, kShader, kMulti, kCount>(tc, t, st, bt, counters, lane_e0,
+                                                             lane_e1, lane_e2, bx, by, block_corner,
+                                                             z_corner, edge_mask);
       }
       for (int e = 0; e < 3; ++e)
         block_corner[e] += bt.step_bx[e];
@@ -793,7 +836,8 @@ HWY_INLINE void visit_blocks(const TileContext& tc, const TriangleSetup& t, Tria
 // exactly as at block size 8, only in another order, which changes nothing: a triangle's
 // blocks are disjoint. Out of line, with one copy of the block loop, which block size 8 does
 // not run.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, class VI>
+template <DepthMode kDepth, ColorMode kColor, shade::Shader kShader, bool kMulti, bool kCount,
+          class VI>
 HWY_NOINLINE void raster_coarse(const TileContext& tc, const TriangleSetup& t, TriangleState& st,
                                 const BlockTests& bt, Counters& counters, VI lane_e0, VI lane_e1,
                                 VI lane_e2, int32_t bx0, int32_t by0, int32_t bx1, int32_t by1,
@@ -828,9 +872,9 @@ HWY_NOINLINE void raster_coarse(const TileContext& tc, const TriangleSetup& t, T
         continue;
       }
       // Partial: its blocks take their own tests; inside every edge: none.
-      visit_blocks<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1,
-                                                   lane_e2, cx, cy, cx1, cy1, coarse_corner,
-                                                   !inside);
+      visit_blocks<kDepth, kColor, kShader, kMulti, kCount>(tc, t, st, bt, counters, lane_e0,
+                                                            lane_e1, lane_e2, cx, cy, cx1, cy1,
+                                                            coarse_corner, !inside);
     }
   }
 }
@@ -944,8 +988,8 @@ HWY_INLINE bool hidden_in_tile(const TileContext& tc, const TriangleSetup& t, ui
 // its own. In one function with the small-triangle path, sharing its state (whose address the
 // general path passes to raster_block_outlined), it made that path, which most triangles of a
 // dense mesh take, 3-4% slower.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
-HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
+template <DepthMode kDepth, ColorMode kColor, shade::Shader kShader, bool kMulti, bool kCount>
+HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t, const float* planes,
                                  Counters& counters) {
   // Without counters: a triangle behind every block of its box in this tile is dropped before
   // any block test. Its depth range over the whole triangle holds each block's range, so each
@@ -956,6 +1000,7 @@ HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
   const int shift = static_cast<int>(tc.subpixel_bits) - 4;
   TriangleState st;
   set_up_state<kMulti, false>(tc, t, st);
+  st.planes = planes;
   if (tc.sub_blocks) set_up_sub_blocks(st);
   PlaneOffsets offsets;
   st.offsets = &offsets;
@@ -991,11 +1036,11 @@ HWY_NOINLINE void raster_general(const TileContext& tc, const TriangleSetup& t,
   bt.z_ceil = t.z_max + bt.z_margin;
 
   if (tc.coarse_blocks == 1) {
-    visit_blocks<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1, lane_e2,
-                                                 bx0, by0, bx1, by1, corner, true);
+    visit_blocks<kDepth, kColor, kShader, kMulti, kCount>(
+        tc, t, st, bt, counters, lane_e0, lane_e1, lane_e2, bx0, by0, bx1, by1, corner, true);
   } else {
-    raster_coarse<kDepth, kColor, kMulti, kCount>(tc, t, st, bt, counters, lane_e0, lane_e1,
-                                                  lane_e2, bx0, by0, bx1, by1, corner);
+    raster_coarse<kDepth, kColor, kShader, kMulti, kCount>(
+        tc, t, st, bt, counters, lane_e0, lane_e1, lane_e2, bx0, by0, bx1, by1, corner);
   }
   if constexpr (kCount) {
     counters.samples_covered += st.covered;
@@ -1028,12 +1073,15 @@ HWY_INLINE void small_block_edges(const TileContext& tc, const TriangleSetup& t,
 }
 
 // The small-triangle path (RasterTriangle's), with kHiz its Hi-Z test per block.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount, bool kHiz>
-HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
+template <DepthMode kDepth, ColorMode kColor, shade::Shader kShader, bool kMulti, bool kCount,
+          bool kHiz>
+HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, const float* planes,
+                             Counters& counters) {
   const hn::ScalableTag<int32_t> di;
   constexpr bool kTestDepth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
   TriangleState st;
   set_up_state<kMulti, true>(tc, t, st);
+  st.planes = planes;
   const auto lane_e0 = lane_steps(di, st.step_x[0], st.step_y[0]);
   const auto lane_e1 = lane_steps(di, st.step_x[1], st.step_y[1]);
   const auto lane_e2 = lane_steps(di, st.step_x[2], st.step_y[2]);
@@ -1062,7 +1110,7 @@ HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, Coun
       if (outside) {
         ++rejected;
       } else if (!hidden) {
-        raster_block<kDepth, kColor, kMulti, kCount, false, false>(
+        raster_block<kDepth, kColor, kShader, kMulti, kCount, false, false>(
             tc, t, st, lane_e0, lane_e1, lane_e2, bx, by, e_block, 7, false, kTestDepth);
       }
       for (int e = 0; e < 3; ++e)
@@ -1081,10 +1129,10 @@ HWY_INLINE void raster_small(const TileContext& tc, const TriangleSetup& t, Coun
 
 // raster_small with Hi-Z, out of line: in the inlined small path, even skipped, its test made
 // the smallest triangles 3-4% slower.
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
+template <DepthMode kDepth, ColorMode kColor, shade::Shader kShader, bool kMulti, bool kCount>
 HWY_NOINLINE void raster_small_hiz(const TileContext& tc, const TriangleSetup& t,
-                                   Counters& counters) {
-  raster_small<kDepth, kColor, kMulti, kCount, true>(tc, t, counters);
+                                   const float* planes, Counters& counters) {
+  raster_small<kDepth, kColor, kShader, kMulti, kCount, true>(tc, t, planes, counters);
 }
 
 // m & (a > b) for int32 lanes: one compare under a mask on AVX-512 (a compare and a mask AND
@@ -1797,8 +1845,21 @@ void RasterSamples(const TileContext& tc, const SampleRecord& r, Counters& count
 // bounding box is more than kSmallHizBox pixels wide or tall test Hi-Z per block (below that,
 // recomputing the bounds of blocks written since their last test costs more than the blocks it
 // rejects: `tiny` 1.14x, `small` 1.12x, benchmarks/RESULTS.md decisions 18 and 135).
-template <DepthMode kDepth, ColorMode kColor, bool kMulti, bool kCount>
-void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& counters) {
+template <DepthMode kDepth, ColorMode kColor, shade::Shader kShader, bool kMulti, bool kCount>
+void RasterTriangle(const TileContext& tc, const TriangleSetup& t,
+                    [[maybe_unused]] const float* planes, Counters& counters) {
+  if constexpr (kShader != shade::Shader::kGouraud) {
+    // A shaded draw: the block paths, which shade lane groups (pixel-by-pixel and window paths
+    // write a Gouraud colour).
+    if (!t.small) {
+      raster_general<kDepth, kColor, kShader, kMulti, kCount>(tc, t, planes, counters);
+    } else if (tc.hiz && (t.x1 - t.x0 >= kSmallHizBox || t.y1 - t.y0 >= kSmallHizBox)) {
+      raster_small_hiz<kDepth, kColor, kShader, kMulti, kCount>(tc, t, planes, counters);
+    } else {
+      raster_small<kDepth, kColor, kShader, kMulti, kCount, false>(tc, t, planes, counters);
+    }
+    return;
+  }
   if (!kMulti && t.centres != 0) {
     raster_centres<kDepth, kColor, kCount>(tc, t, t.centres, counters);
   } else if (kMulti && t.sample_bits != 0) {
@@ -1806,9 +1867,9 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
   } else if (!kMulti && t.small && t.x1 - t.x0 < kCentresBox && t.y1 - t.y0 < kCentresBox) {
     raster_centres<kDepth, kColor, kCount>(tc, t, centres_inside(tc, t), counters);
   } else if (!t.small) {
-    raster_general<kDepth, kColor, kMulti, kCount>(tc, t, counters);
+    raster_general<kDepth, kColor, kShader, kMulti, kCount>(tc, t, nullptr, counters);
   } else if (tc.hiz && (t.x1 - t.x0 >= kSmallHizBox || t.y1 - t.y0 >= kSmallHizBox)) {
-    raster_small_hiz<kDepth, kColor, kMulti, kCount>(tc, t, counters);
+    raster_small_hiz<kDepth, kColor, kShader, kMulti, kCount>(tc, t, nullptr, counters);
   } else {
     if constexpr (kColor != ColorMode::kRGBA32F) {
       const size_t lanes = hn::Lanes(hn::ScalableTag<int32_t>());
@@ -1831,16 +1892,16 @@ void RasterTriangle(const TileContext& tc, const TriangleSetup& t, Counters& cou
         return;
       }
     }
-    raster_small<kDepth, kColor, kMulti, kCount, false>(tc, t, counters);
+    raster_small<kDepth, kColor, kShader, kMulti, kCount, false>(tc, t, nullptr, counters);
   }
 }
 
 template <DepthMode kDepth, ColorMode kColor, bool kMulti>
 void fill_count(KernelTable& t) {
   t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][kMulti][0] =
-      &RasterTriangle<kDepth, kColor, kMulti, false>;
+      &RasterTriangle<kDepth, kColor, shade::Shader::kGouraud, kMulti, false>;
   t.kernels[static_cast<int>(kDepth)][static_cast<int>(kColor)][kMulti][1] =
-      &RasterTriangle<kDepth, kColor, kMulti, true>;
+      &RasterTriangle<kDepth, kColor, shade::Shader::kGouraud, kMulti, true>;
 }
 
 template <DepthMode kDepth, ColorMode kColor>
@@ -1859,6 +1920,16 @@ void fill_multi(KernelTable& t) {
   }
 }
 
+template <shade::Shader kShader, DepthMode kDepth, ColorMode kColor>
+void fill_shaded(KernelTable& t) {
+  auto& row = t.shaded_kernels[static_cast<int>(kShader)][static_cast<int>(kDepth)]
+                              [static_cast<int>(kColor)];
+  row[0][0] = &RasterTriangle<kDepth, kColor, kShader, false, false>;
+  row[0][1] = &RasterTriangle<kDepth, kColor, kShader, false, true>;
+  row[1][0] = &RasterTriangle<kDepth, kColor, kShader, true, false>;
+  row[1][1] = &RasterTriangle<kDepth, kColor, kShader, true, true>;
+}
+
 }  // namespace
 
 // The twelve triangle kernels of depth mode kDepth (every colour mode, single or multisample,
@@ -1870,6 +1941,19 @@ void FillDepthKernels(KernelTable& table) {
   fill_multi<kDepth, ColorMode::kOff>(table);
   fill_multi<kDepth, ColorMode::kRGBA8>(table);
   fill_multi<kDepth, ColorMode::kRGBA32F>(table);
+}
+
+// The 24 triangle kernels of shader kShader (every depth mode, RGBA8 or RGBA32F colour, single
+// or multisample, counting or not) into table.shaded_kernels[kShader]. Each
+// block_kernel_shader_*.cpp instantiates it for its shader; block_kernel.cpp calls them.
+template <shade::Shader kShader>
+void FillShaderKernels(KernelTable& table) {
+  fill_shaded<kShader, DepthMode::kOff, ColorMode::kRGBA8>(table);
+  fill_shaded<kShader, DepthMode::kOff, ColorMode::kRGBA32F>(table);
+  fill_shaded<kShader, DepthMode::kTest, ColorMode::kRGBA8>(table);
+  fill_shaded<kShader, DepthMode::kTest, ColorMode::kRGBA32F>(table);
+  fill_shaded<kShader, DepthMode::kTestWrite, ColorMode::kRGBA8>(table);
+  fill_shaded<kShader, DepthMode::kTestWrite, ColorMode::kRGBA32F>(table);
 }
 
 }  // namespace tessera::fast::HWY_NAMESPACE

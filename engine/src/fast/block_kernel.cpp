@@ -1,10 +1,11 @@
-// The raster kernel table: for every SIMD target, the 36 triangle kernels in
-// block_kernel-inl.h (depth mode x colour mode x single or multisample x counting or not) and
-// the 12 pixel-record kernels (depth mode x no colour or RGBA8 x counting or not).
-// Each depth mode's instances compile in their own source (block_kernel_depth_off.cpp,
-// block_kernel_depth_test.cpp, block_kernel_depth_test_write.cpp), for the same targets as this
-// file, so the kernels build in parallel; this file only gathers them, per target, into one
-// table and picks the table for the target a renderer runs on.
+// The raster kernel table: for every SIMD target, the 36 Gouraud triangle kernels in
+// block_kernel-inl.h (depth mode x colour mode x single or multisample x counting or not), the
+// 12 pixel-record and 12 sample-record kernels (depth mode x no colour or RGBA8 x counting or
+// not), and 24 triangle kernels for each other shader (depth mode x RGBA8 or RGBA32F x single
+// or multisample x counting or not). Each depth mode's Gouraud instances compile in their own
+// source (block_kernel_depth_*.cpp), and each shader's (block_kernel_shader_*.cpp), for the
+// same targets as this file, so the kernels build in parallel; this file only gathers them,
+// per target, into one table and picks the table for the target a renderer runs on.
 #include "engine/src/fast/block_kernel.hpp"
 
 #undef HWY_TARGET_INCLUDE
@@ -21,6 +22,12 @@ void FillDepthKernels(KernelTable& table);
 extern template void FillDepthKernels<DepthMode::kOff>(KernelTable& table);
 extern template void FillDepthKernels<DepthMode::kTest>(KernelTable& table);
 extern template void FillDepthKernels<DepthMode::kTestWrite>(KernelTable& table);
+// Likewise, instantiated by one block_kernel_shader_*.cpp each.
+template <shade::Shader kShader>
+void FillShaderKernels(KernelTable& table);
+extern template void FillShaderKernels<shade::Shader::kInterpolated>(KernelTable& table);
+extern template void FillShaderKernels<shade::Shader::kNormalized>(KernelTable& table);
+extern template void FillShaderKernels<shade::Shader::kPhong>(KernelTable& table);
 
 const KernelTable* GetKernelTable() {
   static const KernelTable table = [] {
@@ -28,6 +35,9 @@ const KernelTable* GetKernelTable() {
     FillDepthKernels<DepthMode::kOff>(t);
     FillDepthKernels<DepthMode::kTest>(t);
     FillDepthKernels<DepthMode::kTestWrite>(t);
+    FillShaderKernels<shade::Shader::kInterpolated>(t);
+    FillShaderKernels<shade::Shader::kNormalized>(t);
+    FillShaderKernels<shade::Shader::kPhong>(t);
     return t;
   }();
   return &table;

@@ -11,6 +11,7 @@
 
 #include "engine/src/fast/pixel_record.hpp"
 #include "engine/src/fast/triangle_setup.hpp"
+#include "engine/src/shade/layout.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
 
@@ -64,15 +65,24 @@ struct TileContext {
   float* rgba32f = nullptr;  // 4 floats per sample value, same layout
   float* hiz_min = nullptr;  // per block of the tile
   float* hiz_max = nullptr;
+
+  // A shaded draw's layout (shade/layout.hpp): its setups' planes are the floats from
+  // planes + 3 * layout->count * (setup index). Null for a Gouraud draw.
+  const shade::Layout* layout = nullptr;
 };
 
-using TriangleKernel = void (*)(const TileContext&, const TriangleSetup&, Counters&);
+// A triangle kernel draws setup `t`, whose planes (a shaded draw's, else null) are `planes`.
+using TriangleKernel = void (*)(const TileContext&, const TriangleSetup& t, const float* planes,
+                                Counters&);
 using PixelKernel = void (*)(const TileContext&, const PixelRecord&, Counters&);
 using SampleKernel = void (*)(const TileContext&, const SampleRecord&, Counters&);
 
 struct KernelTable {
-  // [depth][colour][multisample][counting]
+  // [depth][colour][multisample][counting]: the Gouraud colour (shade::Shader::kGouraud).
   TriangleKernel kernels[kDepthModes][kColorModes][2][2];
+  // [shader][depth][colour][multisample][counting] for the other shaders (row kGouraud and
+  // colour kOff unused: a draw without colour writes is drawn by the Gouraud kernels).
+  TriangleKernel shaded_kernels[shade::kShaders][kDepthModes][kColorModes][2][2];
   // [depth][colour][counting]: one sample, and no colour or RGBA8 (null for RGBA32F).
   PixelKernel pixel_kernels[kDepthModes][kColorModes][2];
   // [depth][colour][counting]: two or four samples, and no colour or RGBA8 (null for RGBA32F).
@@ -86,6 +96,17 @@ inline TriangleKernel triangle_kernel(const KernelTable& table, DepthMode depth,
                                       bool multisample, bool count) {
   return table.kernels[static_cast<int>(depth)][static_cast<int>(color)][multisample ? 1 : 0]
                       [count ? 1 : 0];
+}
+
+// The kernel for `shader`'s draws (shade::Layout::shader).
+inline TriangleKernel triangle_kernel(const KernelTable& table, shade::Shader shader,
+                                      DepthMode depth, ColorMode color, bool multisample,
+                                      bool count) {
+  if (shader == shade::Shader::kGouraud || color == ColorMode::kOff) {
+    return triangle_kernel(table, depth, color, multisample, count);
+  }
+  return table.shaded_kernels[static_cast<int>(shader)][static_cast<int>(depth)]
+                             [static_cast<int>(color)][multisample ? 1 : 0][count ? 1 : 0];
 }
 
 // The kernel for pixel records, or null where a draw's state has none (colour other than

@@ -47,6 +47,7 @@ constexpr size_t kFineChunkTriangles = 32768;
 
 struct Chunk {
   SetupList setups;    // reserved to the pass's capacity: never grows past the budget
+  PlaneList planes;    // a shaded draw's, reserved as setups
   PixelList pixels;    // reserved as setups at one sample (each triangle takes one or the other)
   SampleList samples;  // reserved as setups at two and four samples
   binning::Bins bins;
@@ -122,36 +123,15 @@ int64_t FastRasterizer::simd_target() const noexcept {
   return state_->target;
 }
 
-std::string FastRasterizer::unsupported_state(const PipelineState& pipeline,
-                                              uint32_t attribute_count) {
-  const std::string tail = " is not drawn by the fast engine yet (Backend::kReference draws it)";
-  if (pipeline.shader != FragmentShader::kGouraud) return "shader kPhong" + tail;
-  if (pipeline.output != TargetOutput::kColor) {
-    static constexpr const char* kNames[] = {"kColor",    "kEyeDepth",     "kNormal",
-                                             "kPosition", "kBarycentrics", "kPrimitiveId",
-                                             "kObjectId"};
-    return std::string("output ") + kNames[static_cast<unsigned>(pipeline.output)] +
-           " (a vision output)" + tail;
-  }
-  // The setup interpolates every colour channel as the pipeline's interpolation says.
-  const VaryingMode mode = default_mode(pipeline.interpolation);
-  const uint32_t first = pipeline.roles.color;
-  for (uint32_t c = first; c < std::min(attribute_count, first + 4); ++c) {
-    const VaryingMode m = resolved_mode(pipeline, c);
-    if (m != mode) {
-      return "varying_modes[" + std::to_string(c) + "] = " +
-             (m == VaryingMode::kFlat     ? "kFlat"
-              : m == VaryingMode::kAffine ? "kAffine"
-                                          : "kPerspective") +
-             ", unlike the pipeline's interpolation," + tail;
-    }
-  }
-  return {};
+bool FastRasterizer::checks_finite_values(const DrawInput& input, const PipelineState& pipeline) {
+  return input.indices.empty() && input.attribute_count <= 4 &&
+         (input.attribute_count == 0 || pipeline.roles.color == 0) &&
+         shade::layout_for(pipeline, input.attribute_count).shader == shade::Shader::kGouraud;
 }
 
 void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb,
                           const PipelineState& pipeline, const DrawInput& input, Counters& counters,
-                          bool check_finite) {
+                          bool check_finite, std::span<const uint32_t> primitive_ids) {
   State& st = *state_;
   const bool indexed = !input.indices.empty();
   const size_t triangles = (indexed ? input.indices.size() : input.positions.size()) / 3;
@@ -185,10 +165,18 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   const ColorMode color = !pipeline.color_write                         ? ColorMode::kOff
                           : fb.desc.color_format == ColorFormat::kRGBA8 ? ColorMode::kRGBA8
                                                                         : ColorMode::kRGBA32F;
-  const TriangleKernel kernel = triangle_kernel(*st.kernels, depth, color, samples > 1, st.count);
+  // A shaded draw's setups carry its planes, and its kernels read them: no records, which hold
+  // a Gouraud colour.
+  const shade::Layout layout = shade::layout_for(pipeline, input.attribute_count);
+  const bool shaded = layout.shader != shade::Shader::kGouraud;
+  if (shaded) draw.layout = &layout;
+  const size_t plane_stride = shaded ? size_t{3} * layout.count : 0;
+  const TriangleKernel kernel =
+      triangle_kernel(*st.kernels, layout.shader, depth, color, samples > 1, st.count);
+  const bool records = st.records && !shaded;
   const PixelKernel pixels_kernel =
-      st.records && samples == 1 ? pixel_kernel(*st.kernels, depth, color, st.count) : nullptr;
-  const SampleKernel samples_kernel = st.records && (samples == 2 || samples == 4)
+      records && samples == 1 ? pixel_kernel(*st.kernels, depth, color, st.count) : nullptr;
+  const SampleKernel samples_kernel = records && (samples == 2 || samples == 4)
                                           ? sample_kernel(*st.kernels, depth, color, st.count)
                                           : nullptr;
   const CompareOp op = pipeline.depth_compare;
@@ -242,7 +230,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   // A triangle's setup or record (both are reserved for each) and its bin entry.
   const uint64_t triangle_bytes =
       sizeof(TriangleSetup) + (ctx.sample_records ? sizeof(SampleRecord) : sizeof(PixelRecord)) +
-      binning::Bins::kBytesPerTriangle;
+      binning::Bins::kBytesPerTriangle + plane_stride * sizeof(float);
   constexpr uint64_t kReferenceBytes = binning::Bins::kBytesPerReference;
   constexpr size_t kBatch = 256;
   // A triangle cut by clip planes becomes at most kMaxClipVertices - 2 pieces.
@@ -273,6 +261,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
       tbb::parallel_for(size_t{0}, chunk_count, [&](size_t c) {
         Chunk& chunk = st.chunks[c];
         chunk.setups.clear();
+        chunk.planes.clear();
         chunk.pixels.clear();
         chunk.samples.clear();
         chunk.bins.reset(grid.tile_count(), grid.tiles_x);
@@ -288,6 +277,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
         if (held(chunk.setups.capacity(), 0) > chunk_budget) {
           // Capacity kept from a draw with fewer chunks or a smaller grid: start afresh.
           SetupList().swap(chunk.setups);
+          PlaneList().swap(chunk.planes);
           PixelList().swap(chunk.pixels);
           SampleList().swap(chunk.samples);
           chunk.bins.release();
@@ -313,6 +303,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
                 held(spare, chunk.bins.references()) <= chunk_budget ? spare : exact;
             if (held(grown, chunk.bins.references()) <= chunk_budget || chunk.setups.empty()) {
               chunk.setups.reserve(grown);
+              if (shaded) chunk.planes.reserve(grown * plane_stride);
               if (ctx.pixel_records) chunk.pixels.reserve(grown);
               if (ctx.sample_records) chunk.samples.reserve(grown);
               chunk.bins.reserve_triangles(chunk.setups.capacity());
@@ -325,8 +316,11 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
           const size_t first_setup = chunk.setups.size(), first_pixel = chunk.pixels.size(),
                        first_sample = chunk.samples.size();
           const Counters before = chunk.counters;
-          if (!st.setup(ctx, input, t, batch_end, chunk.setups, chunk.pixels, chunk.samples,
-                        chunk.bins, chunk.counters)) {
+          if (shaded) {
+            setup_shaded_range(ctx, layout, input, primitive_ids, t, batch_end, chunk.setups,
+                               chunk.planes, chunk.bins, chunk.counters);
+          } else if (!st.setup(ctx, input, t, batch_end, chunk.setups, chunk.pixels, chunk.samples,
+                               chunk.bins, chunk.counters)) {
             // A NaN or infinity (ctx.check_finite): the draw stops with validation's error.
             chunk.non_finite = true;
             chunk.stopped_at = t;
@@ -338,6 +332,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
           if (!fits && (first > 0 || batch > 1)) {
             // Undo the batch; retry smaller, or end the chunk's part of this pass here.
             chunk.setups.resize(first_setup);
+            chunk.planes.resize(first_setup * plane_stride);
             chunk.pixels.resize(first_pixel);
             chunk.samples.resize(first_sample);
             chunk.bins.truncate(first);
@@ -383,8 +378,8 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
     std::vector<ChunkView> views(kept);
     uint64_t kept_setups = 0, kept_references = 0;
     for (size_t c = 0; c < kept; ++c) {
-      views[c] = {st.chunks[c].setups.data(), st.chunks[c].pixels.data(),
-                  st.chunks[c].samples.data(), &st.chunks[c].bins};
+      views[c] = {st.chunks[c].setups.data(), shaded ? st.chunks[c].planes.data() : nullptr,
+                  st.chunks[c].pixels.data(), st.chunks[c].samples.data(), &st.chunks[c].bins};
       const Counters& cc = st.chunks[c].counters;
       counters.triangles_submitted += cc.triangles_submitted;
       counters.triangles_culled += cc.triangles_culled;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <new>
-#include <string>
+#include <span>
 
 #include <tbb/task_arena.h>
 
@@ -33,28 +33,20 @@ class FastRasterizer {
   int64_t simd_target() const noexcept;
 
   // Whether draw() can check `input`'s values for NaN and infinity itself (check_finite): a
-  // triangle soup (every vertex is drawn) whose attributes are at most the four colour
-  // channels the setup reads.
-  static bool checks_finite_values(const DrawInput& input, const PipelineState& pipeline) {
-    return input.indices.empty() && input.attribute_count <= 4 &&
-           (input.attribute_count == 0 || pipeline.roles.color == 0);
-  }
+  // triangle soup (every vertex is drawn) of the plain Gouraud colour whose attributes are at
+  // most the four colour channels the setup reads.
+  static bool checks_finite_values(const DrawInput& input, const PipelineState& pipeline);
 
-  // Empty when the fast engine draws `pipeline`'s shading state with `attribute_count`
-  // varyings; otherwise what it does not draw yet, for Error(kUnsupported). It draws the
-  // Gouraud colour of the four colour varyings (roles.color) into the colour output, each
-  // present colour varying interpolated as PipelineState::interpolation says; the other
-  // shaders, outputs and varying modes are the reference's only for now.
-  static std::string unsupported_state(const PipelineState& pipeline, uint32_t attribute_count);
-
-  // Draws a validated draw call (see draw_validation.hpp) inside `arena`. With check_finite,
+  // Draws a validated draw call (see draw_validation.hpp) inside `arena`: every shading state
+  // (shade/layout.hpp), its triangles' primitive indices `primitive_ids[t]`, or t where that is
+  // empty. With check_finite,
   // a draw checks_finite_values() accepts whose finite values were not validated: each
   // piece's vertices are checked as it is set up, and a NaN or infinity anywhere throws
   // validation's error (check_finite_values) before anything is drawn or counted. Throws
   // BinMemoryError when a pass cannot allocate its setups and bins.
   void draw(tbb::task_arena& arena, detail::FramebufferStorage& target,
             const PipelineState& pipeline, const DrawInput& input, Counters& counters,
-            bool check_finite = false);
+            bool check_finite = false, std::span<const uint32_t> primitive_ids = {});
 
  private:
   struct State;

@@ -1083,13 +1083,6 @@ HWY_INLINE void fill_batch(const SetupContext& ctx, const DrawInput& input, size
   }
 }
 
-// The bin tiles of a bounding box's pixels x0..x1, y0..y1 (on screen: not negative).
-HWY_INLINE binning::TileRect tile_rect(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1,
-                                       uint32_t log2) {
-  return {static_cast<uint16_t>(x0 >> log2), static_cast<uint16_t>(y0 >> log2),
-          static_cast<uint16_t>(x1 >> log2), static_cast<uint16_t>(y1 >> log2)};
-}
-
 // Streams 16 bytes (a record's piece) from `from` to `to`, 16-byte aligned: the records are
 // read long after, by the raster phase, so writing them through the cache would first read
 // each line from memory for nothing.
@@ -1166,11 +1159,11 @@ bool SetupRange(const SetupContext& ctx, const DrawInput& input, size_t begin, s
         }
         setup_triangle(ctx, position, attribute, setups, counters);
         for (size_t i = next; i < setups.size(); ++i)
-          bins.record(
-              tile_rect(static_cast<uint32_t>(setups[i].x0), static_cast<uint32_t>(setups[i].y0),
-                        static_cast<uint32_t>(setups[i].x1), static_cast<uint32_t>(setups[i].y1),
-                        ctx.bin_tile_log2),
-              static_cast<uint32_t>(i));
+          bins.record(binning::tile_rect(static_cast<uint32_t>(setups[i].x0),
+                                         static_cast<uint32_t>(setups[i].y0),
+                                         static_cast<uint32_t>(setups[i].x1),
+                                         static_cast<uint32_t>(setups[i].y1), ctx.bin_tile_log2),
+                      static_cast<uint32_t>(i));
         next = setups.size();
         setups.resize(next + (end - (t + l) - 1));
         continue;

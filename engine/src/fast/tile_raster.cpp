@@ -33,6 +33,8 @@ struct ListView {
   std::span<const uint32_t> list;
   const TriangleSetup* setups = nullptr;
   const Record* records = nullptr;
+  const float* planes = nullptr;  // a shaded draw's, plane_stride floats per setup
+  size_t plane_stride = 0;
 };
 
 // What the draw loop fetches ahead, each at its own distance (see draw_list).
@@ -117,7 +119,7 @@ void draw_list(const TileContext& tc, const ListView<Record>& here, const ListVi
     if ((reference & kPixelRecordBit) != 0) {
       record_kernel(tc, here.records[reference & ~kPixelRecordBit], counters);
     } else {
-      kernel(tc, here.setups[reference], counters);
+      kernel(tc, here.setups[reference], here.planes + reference * here.plane_stride, counters);
     }
   }
 }
@@ -127,12 +129,16 @@ template <bool kFar, class Record, class RecordKernel>
 void draw_lists(const TileContext& tc, std::span<const ChunkView> chunks, uint32_t tile,
                 const Record* ChunkView::*records, TriangleKernel kernel,
                 RecordKernel record_kernel, Counters& counters) {
+  const size_t stride = tc.layout ? size_t{3} * tc.layout->count : 0;
   // The first non-empty list from chunk c on, and its chunk (chunks.size() when none).
   const auto list_from = [&](size_t c) {
     for (; c < chunks.size(); ++c) {
       const ChunkView& chunk = chunks[c];
       const std::span<const uint32_t> list = chunk.bins->tile(tile);
-      if (!list.empty()) return std::pair{c, ListView<Record>{list, chunk.setups, chunk.*records}};
+      if (!list.empty()) {
+        return std::pair{
+            c, ListView<Record>{list, chunk.setups, chunk.*records, chunk.planes, stride}};
+      }
     }
     return std::pair{chunks.size(), ListView<Record>{}};
   };

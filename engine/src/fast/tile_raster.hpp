@@ -16,6 +16,7 @@ namespace tessera::fast {
 // One setup worker's output: its triangles (setups, and pixel or sample records) and its bins.
 struct ChunkView {
   const TriangleSetup* setups = nullptr;
+  const float* planes = nullptr;  // a shaded draw's (TileContext::layout), else null
   const PixelRecord* pixels = nullptr;
   const SampleRecord* samples = nullptr;
   const binning::Bins* bins = nullptr;

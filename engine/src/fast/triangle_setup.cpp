@@ -17,7 +17,17 @@ struct Snapped {
   int64_t x, y;  // fixed point, y down
   double z;      // z / w
   double inv_w;
-  std::array<double, 4> color;
+  // The colour (a Gouraud draw), or a shaded draw's interpolants.
+  std::array<double, shade::kMaxInterpolants> value;
+};
+static_assert(shade::kMaxInterpolants >= 4);
+
+// What setup_snapped needs for a shaded draw's planes: the layout, the first vertex's values
+// (the flat interpolants'), and where the planes go.
+struct ShadedPlanes {
+  const shade::Layout& layout;
+  const std::array<double, shade::kMaxInterpolants>& flat;
+  PlaneList& planes;
 };
 
 // Round to nearest, ties to even, for |v| < 2^51: adding and subtracting 1.5 * 2^52 leaves
@@ -43,8 +53,10 @@ Snapped snap(double x, double y, double z, double w, const SetupContext& ctx) {
   return s;
 }
 
+// Sets up a snapped triangle: with `shaded`, a shaded draw's (its planes appended beside the
+// setup), else a Gouraud draw's, whose setup holds the colour planes.
 void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList& out,
-                   Counters& counters) {
+                   Counters& counters, const ShadedPlanes* shaded = nullptr) {
   int64_t area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
   if (area == 0) {
     ++counters.triangles_culled;
@@ -162,8 +174,8 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   t.z_max = static_cast<float>(std::clamp(std::max({v[0].z, v[1].z, v[2].z}), 0.0, 1.0));
 
   double q[3] = {1.0, 1.0, 1.0};
-  t.flat_q = p.interpolation == Interpolation::kAffine ||
-             (v[0].inv_w == v[1].inv_w && v[1].inv_w == v[2].inv_w);
+  const bool needs_q = shaded ? shaded->layout.needs_q : p.interpolation != Interpolation::kAffine;
+  t.flat_q = !needs_q || (v[0].inv_w == v[1].inv_w && v[1].inv_w == v[2].inv_w);
   if (!t.flat_q) {
     const double q_max = std::max({v[0].inv_w, v[1].inv_w, v[2].inv_w});
     for (int k = 0; k < 3; ++k)
@@ -172,8 +184,32 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   double at0;
   plane(q[0], q[1], q[2], at0, t.q_dx, t.q_dy);
   t.q0 = static_cast<float>(at0);
+  if (shaded) {
+    // The interpolants' planes; the colour planes are not read.
+    const shade::Layout& layout = shaded->layout;
+    for (int c = 0; c < 4; ++c)
+      t.qa0[c] = t.qa_dx[c] = t.qa_dy[c] = 0.0f;
+    t.unit_colour = 0;
+    const size_t at = shaded->planes.size();
+    shaded->planes.resize(at + 3 * size_t{layout.count});
+    float* plane_out = shaded->planes.data() + at;
+    for (uint32_t j = 0; j < layout.count; ++j, plane_out += 3) {
+      const VaryingMode mode = layout.values[j].mode;
+      if (mode == VaryingMode::kFlat) {
+        plane_out[0] = static_cast<float>(shaded->flat[j]);
+        plane_out[1] = plane_out[2] = 0.0f;
+        continue;
+      }
+      const double* w = mode == VaryingMode::kPerspective ? q : nullptr;
+      const auto scaled = [&](int k) { return (w ? w[k] : 1.0) * v[k].value[j]; };
+      plane(scaled(0), scaled(1), scaled(2), at0, plane_out[1], plane_out[2]);
+      plane_out[0] = static_cast<float>(at0);
+    }
+    out.push_back(t);
+    return;
+  }
   for (int c = 0; c < 4; ++c) {
-    plane(q[0] * v[0].color[c], q[1] * v[1].color[c], q[2] * v[2].color[c], at0, t.qa_dx[c],
+    plane(q[0] * v[0].value[c], q[1] * v[1].value[c], q[2] * v[2].value[c], at0, t.qa_dx[c],
           t.qa_dy[c]);
     t.qa0[c] = static_cast<float>(at0);
   }
@@ -181,7 +217,7 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   float gradient = 0.0f;
   for (int c = 0; c < 4; ++c) {
     for (int k = 0; k < 3; ++k)
-      unit = unit && v[k].color[c] >= 0.0 && v[k].color[c] <= 1.0;
+      unit = unit && v[k].value[c] >= 0.0 && v[k].value[c] <= 1.0;
     gradient = std::max({gradient, std::abs(t.qa_dx[c]), std::abs(t.qa_dy[c])});
   }
   const float reach = static_cast<float>((t.x1 - t.x0) + (t.y1 - t.y0) + 15);
@@ -248,10 +284,103 @@ void setup_triangle(const SetupContext& ctx, const std::array<const Float4*, 3>&
     const ClipVertex& v = polygon.vertices[i];
     s[i] = snap(v.x, v.y, v.z, v.w, ctx);
     for (int c = 0; c < 4; ++c)
-      s[i].color[c] = affine ? v.attributes[c] / v.w : v.attributes[c];
+      s[i].value[c] = affine ? v.attributes[c] / v.w : v.attributes[c];
   }
   for (int i = 1; i + 1 < polygon.count; ++i)
     setup_snapped(ctx, {s[0], s[i], s[i + 1]}, out, counters);
+}
+
+void setup_shaded_triangle(const SetupContext& ctx, const shade::Layout& layout,
+                           const std::array<const Float4*, 3>& positions,
+                           const std::array<const float*, 3>& varyings, uint32_t primitive,
+                           SetupList& out, PlaneList& planes, Counters& counters) {
+  ++counters.triangles_submitted;
+  const bool gl_depth = ctx.pipeline->clip_depth == ClipDepth::kNegativeOneToOne;
+  std::array<ClipVertex, 3> tri;
+  for (int k = 0; k < 3; ++k) {
+    const Float4& p = *positions[k];
+    tri[k].x = p.x;
+    tri[k].y = p.y;
+    tri[k].w = p.w;
+    tri[k].z = gl_depth ? 0.5 * (double{p.z} + p.w) : p.z;  // as setup_triangle
+    for (uint32_t j = 0; j < layout.count; ++j) {
+      const shade::Interpolant& in = layout.values[j];
+      double value = 0.0;
+      switch (in.source) {
+        case shade::Source::kVarying:
+          value = varyings[k][in.index];
+          break;
+        case shade::Source::kClipW:
+          value = p.w;
+          break;
+        case shade::Source::kBarycentric:
+          value = in.index == static_cast<uint32_t>(k) ? 1.0 : 0.0;
+          break;
+        case shade::Source::kPrimitive:
+          value = primitive;
+          break;
+      }
+      tri[k].attributes[j] = value;
+    }
+  }
+  std::array<double, shade::kMaxInterpolants> flat{};
+  for (uint32_t j = 0; j < layout.count; ++j)
+    flat[j] = tri[0].attributes[j];  // the provoking vertex, clipped or not
+  // Affine values are clipped as a * w and divided by the new w (see setup_triangle).
+  const auto affine = [&](uint32_t j) { return layout.values[j].mode == VaryingMode::kAffine; };
+  std::array<ClipVertex, 3> to_clip = tri;
+  for (ClipVertex& c : to_clip) {
+    for (uint32_t j = 0; j < layout.count; ++j) {
+      if (affine(j)) c.attributes[j] *= c.w;
+    }
+  }
+  ClipPolygon polygon;
+  const ClipResult clip = clip_triangle(to_clip, layout.count, ctx.guard_band, polygon);
+  if (clip.clipped) ++counters.triangles_clipped;
+  if (!clip.visible) {
+    ++counters.triangles_culled;
+    return;
+  }
+  std::array<Snapped, kMaxClipVertices> s;
+  for (int i = 0; i < polygon.count; ++i) {
+    // Uncut: the values exactly as given (as the reference takes them).
+    const ClipVertex& v = clip.clipped ? polygon.vertices[i] : tri[i];
+    s[i] = snap(polygon.vertices[i].x, polygon.vertices[i].y, polygon.vertices[i].z,
+                polygon.vertices[i].w, ctx);
+    for (uint32_t j = 0; j < layout.count; ++j)
+      s[i].value[j] = clip.clipped && affine(j) ? v.attributes[j] / v.w : v.attributes[j];
+  }
+  const ShadedPlanes shaded{layout, flat, planes};
+  for (int i = 1; i + 1 < polygon.count; ++i)
+    setup_snapped(ctx, {s[0], s[i], s[i + 1]}, out, counters, &shaded);
+}
+
+void setup_shaded_range(const SetupContext& ctx, const shade::Layout& layout,
+                        const DrawInput& input, std::span<const uint32_t> primitive_ids,
+                        size_t begin, size_t end, SetupList& out, PlaneList& planes,
+                        binning::Bins& bins, Counters& counters) {
+  const bool indexed = !input.indices.empty();
+  const uint32_t count = input.attribute_count;
+  for (size_t t = begin; t < end; ++t) {
+    std::array<const Float4*, 3> position;
+    std::array<const float*, 3> varying{};
+    for (int k = 0; k < 3; ++k) {
+      const size_t vertex = indexed ? input.indices[t * 3 + k] : t * 3 + k;
+      position[k] = &input.positions[vertex];
+      if (count) varying[k] = &input.attributes[vertex * count];
+    }
+    const size_t first = out.size();
+    const uint32_t primitive = primitive_ids.empty() ? static_cast<uint32_t>(t) : primitive_ids[t];
+    setup_shaded_triangle(ctx, layout, position, varying, primitive, out, planes, counters);
+    for (size_t i = first; i < out.size(); ++i) {
+      const TriangleSetup& setup = out[i];
+      bins.record(
+          binning::tile_rect(static_cast<uint32_t>(setup.x0), static_cast<uint32_t>(setup.y0),
+                             static_cast<uint32_t>(setup.x1), static_cast<uint32_t>(setup.y1),
+                             ctx.bin_tile_log2),
+          static_cast<uint32_t>(i));
+    }
+  }
 }
 
 }  // namespace tessera::fast

@@ -11,9 +11,11 @@
 #include <type_traits>
 #include <vector>
 
+#include "binning/bins.hpp"
 #include "engine/src/aligned_allocator.hpp"
 #include "engine/src/clip.hpp"
 #include "engine/src/sample_positions.hpp"
+#include "engine/src/shade/layout.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
 
@@ -82,6 +84,13 @@ static_assert(sizeof(TriangleSetup) == 160 && offsetof(TriangleSetup, a) == 32 &
               offsetof(TriangleSetup, sample_bits) == 152);
 using SetupList = detail::UninitializedVector<TriangleSetup>;
 
+// A shaded draw's planes (shade/layout.hpp), beside its setups: setup i's interpolant j is the
+// plane value + gx * x + gy * y over pixel offsets from the centre of pixel (x0, y0), with its
+// value, gx and gy at floats 3 * (i * layout.count + j) + 0, 1, 2. A perspective-correct
+// interpolant's plane is of q times the value (divided by the q plane per pixel), an affine
+// one's of the value, and a flat one's is the first vertex's value with zero gradients.
+using PlaneList = detail::UninitializedVector<float>;
+
 struct SetupContext {
   uint32_t width = 0;
   uint32_t height = 0;
@@ -138,5 +147,23 @@ struct SetupContext {
 void setup_triangle(const SetupContext& context, const std::array<const Float4*, 3>& positions,
                     const std::array<const float*, 3>& attributes, SetupList& out,
                     Counters& counters);
+
+// Sets up one triangle of a shaded draw (layout.shader is not kGouraud) the same way, with the
+// layout's planes appended to `planes` for each setup appended to `out`: `varyings` are each
+// vertex's attribute_count varyings, `primitive` the triangle's index in the draw. Its flat
+// interpolants take the first vertex's values, clipped or not, and its setups carry no colour
+// planes.
+void setup_shaded_triangle(const SetupContext& context, const shade::Layout& layout,
+                           const std::array<const Float4*, 3>& positions,
+                           const std::array<const float*, 3>& varyings, uint32_t primitive,
+                           SetupList& out, PlaneList& planes, Counters& counters);
+
+// Sets up triangles [begin, end) of a shaded draw in order with setup_shaded_triangle,
+// recording each setup's bin tiles (context.bin_tile_log2) and index in `bins`. The triangles'
+// primitive indices are `primitive_ids[t]`, or t where that is empty.
+void setup_shaded_range(const SetupContext& context, const shade::Layout& layout,
+                        const DrawInput& input, std::span<const uint32_t> primitive_ids,
+                        size_t begin, size_t end, SetupList& out, PlaneList& planes,
+                        binning::Bins& bins, Counters& counters);
 
 }  // namespace tessera::fast

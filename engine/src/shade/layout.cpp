@@ -1,0 +1,111 @@
+// The shading layout of a fast-engine draw (layout.hpp).
+#include "engine/src/shade/layout.hpp"
+
+#include <cmath>
+
+#include "engine/src/shading_state.hpp"
+
+namespace tessera::shade {
+
+namespace {
+
+// Unit vector of v, in double, rounded to float (0 for a zero vector), as the reference's
+// normalized() forms it.
+std::array<float, 3> unit(double x, double y, double z) {
+  const double length = std::sqrt(x * x + y * y + z * z);
+  if (!(length > 0.0)) return {0.0f, 0.0f, 0.0f};
+  return {static_cast<float>(x / length), static_cast<float>(y / length),
+          static_cast<float>(z / length)};
+}
+
+}  // namespace
+
+Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count) {
+  Layout layout;
+  if (!pipeline.color_write) return layout;
+  const auto add = [&](Source source, uint32_t index, VaryingMode mode) {
+    layout.values[layout.count++] = {source, index, mode};
+    layout.needs_q = layout.needs_q || mode == VaryingMode::kPerspective;
+  };
+  const auto add_varyings = [&](uint32_t first, uint32_t n) {
+    for (uint32_t i = first; i < first + n; ++i)
+      add(Source::kVarying, i, resolved_mode(pipeline, i));
+  };
+  const auto channels = [&](std::array<uint8_t, 4> channel, std::array<float, 4> constant) {
+    layout.shader = Shader::kInterpolated;
+    layout.channel = channel;
+    layout.constant = constant;
+  };
+  constexpr uint8_t k = Layout::kConstant;
+  const uint32_t color = pipeline.roles.color;
+  const uint32_t color_count = attribute_count > color ? std::min(attribute_count - color, 4u) : 0u;
+  switch (pipeline.output) {
+    case TargetOutput::kEyeDepth:
+      add(Source::kClipW, 0, VaryingMode::kPerspective);
+      channels({0, 0, 0, k}, {0, 0, 0, 1});
+      return layout;
+    case TargetOutput::kNormal:
+      add_varyings(pipeline.roles.normal, 3);
+      layout.shader = Shader::kNormalized;
+      return layout;
+    case TargetOutput::kPosition:
+      add_varyings(pipeline.roles.position, 3);
+      channels({0, 1, 2, k}, {0, 0, 0, 1});
+      return layout;
+    case TargetOutput::kBarycentrics:
+      for (uint32_t v = 0; v < 3; ++v)
+        add(Source::kBarycentric, v, VaryingMode::kPerspective);
+      channels({0, 1, 2, k}, {0, 0, 0, 1});
+      return layout;
+    case TargetOutput::kPrimitiveId:
+      add(Source::kPrimitive, 0, VaryingMode::kFlat);
+      channels({0, 0, 0, k}, {0, 0, 0, 1});
+      return layout;
+    case TargetOutput::kObjectId: {
+      const float id = static_cast<float>(pipeline.object_id);
+      channels({k, k, k, k}, {id, id, id, 1});
+      return layout;
+    }
+    case TargetOutput::kColor:
+      break;
+  }
+  if (pipeline.shader == FragmentShader::kPhong) {
+    layout.shader = Shader::kPhong;
+    add_varyings(pipeline.roles.normal, 3);
+    add_varyings(pipeline.roles.position, 3);
+    layout.has_color = color_count == 4;
+    if (layout.has_color) add_varyings(color, 4);
+    layout.phong = pipeline.phong;
+    for (uint32_t l = 0; l < pipeline.phong.light_count; ++l) {
+      const Light& in = pipeline.phong.lights[l];
+      PreparedLight& out = layout.lights[l];
+      out.kind = in.kind;
+      out.position = in.position;
+      out.to_light =
+          unit(-double{in.direction[0]}, -double{in.direction[1]}, -double{in.direction[2]});
+      out.axis = unit(in.direction[0], in.direction[1], in.direction[2]);
+      out.diffuse = in.diffuse;
+      out.specular = in.specular;
+      out.c0 = in.c0;
+      out.c1 = in.c1;
+      out.c2 = in.c2;
+      out.spot_cos_cutoff = in.spot_cos_cutoff;
+      out.spot_exponent = in.spot_exponent;
+    }
+    return layout;
+  }
+  // Gouraud: the setup's own colour planes when every colour varying is interpolated as the
+  // pipeline's interpolation says (the setup interpolates all four alike).
+  bool uniform = true;
+  for (uint32_t c = color; c < color + color_count; ++c)
+    uniform = uniform && resolved_mode(pipeline, c) == default_mode(pipeline.interpolation);
+  if (uniform) return layout;
+  add_varyings(color, color_count);
+  std::array<uint8_t, 4> channel{k, k, k, k};
+  for (uint32_t c = 0; c < color_count; ++c)
+    channel[c] = static_cast<uint8_t>(c);
+  channels(channel, {0, 0, 0, 1});
+  return layout;
+}
+
+}  // namespace tessera::shade

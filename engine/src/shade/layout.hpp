@@ -1,0 +1,76 @@
+// What a shaded draw's fragments are made of in the fast engine: the values its triangle setups
+// carry as planes (interpolants), how each is interpolated, and which built-in shader turns
+// them into the colour target's RGBA. Built once per draw from the pipeline's shading state
+// (tessera/shading.hpp); the setup (triangle_setup.cpp) writes the planes, and the shader
+// policies (shade-inl.h) read them. Draws of the plain Gouraud colour (every colour varying
+// interpolated as the pipeline's interpolation says) keep the setup's own colour planes and
+// need none of this.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "tessera/pipeline.hpp"
+
+namespace tessera::shade {
+
+// The fragment shader a kernel instance is compiled for.
+enum class Shader : uint8_t {
+  kGouraud,       // the setup's four colour planes (TriangleSetup::qa0...): the common case
+  kInterpolated,  // each RGBA channel an interpolant or a constant
+  kNormalized,    // interpolants 0..2 normalized, as RGB (A = 1): TargetOutput::kNormal
+  kPhong,         // per-pixel Phong (PhongState) of the normal and position interpolants
+};
+inline constexpr int kShaders = 4;
+
+// What a vertex carries for one interpolant.
+enum class Source : uint8_t {
+  kVarying,      // varying `index` of the draw
+  kClipW,        // its clip-space w: the eye depth, perspective-correct
+  kBarycentric,  // 1 for vertex `index` of the draw's triangle, 0 for the others
+  kPrimitive,    // the triangle's index in the draw (flat)
+};
+
+struct Interpolant {
+  Source source = Source::kVarying;
+  uint32_t index = 0;
+  VaryingMode mode = VaryingMode::kPerspective;  // never kDefault
+};
+
+// Phong needs 3 + 3 + 4 values; every output fewer.
+inline constexpr uint32_t kMaxInterpolants = 10;
+
+// A light as the Phong policy reads it: directions normalized and negated where the model
+// needs them, in double and then rounded to float, as the reference normalizes them.
+struct PreparedLight {
+  LightKind kind = LightKind::kPoint;
+  std::array<float, 3> position{};  // point and spot
+  std::array<float, 3> to_light{};  // directional: the unit vector toward the light
+  std::array<float, 3> axis{};      // spot: the unit direction the light travels
+  std::array<float, 3> diffuse{}, specular{};
+  float c0 = 1, c1 = 0, c2 = 0;
+  float spot_cos_cutoff = 0, spot_exponent = 0;
+};
+
+struct Layout {
+  Shader shader = Shader::kGouraud;
+  uint32_t count = 0;  // interpolants per triangle: 3 floats of planes each
+  std::array<Interpolant, kMaxInterpolants> values{};
+  bool needs_q = false;  // a perspective-correct interpolant: the setup's 1/w plane is read
+  // kInterpolated: channel c is interpolant channel[c], or constant[c] where that is kConstant.
+  static constexpr uint8_t kConstant = 0xFF;
+  std::array<uint8_t, 4> channel{kConstant, kConstant, kConstant, kConstant};
+  std::array<float, 4> constant{0, 0, 0, 1};
+  // kPhong: the normal is interpolants 0..2, the position 3..5, and with has_color the colour
+  // varyings 6..9, which scale the base colour.
+  bool has_color = false;
+  PhongState phong{};  // the draw's material (phong.lights unused: see lights)
+  std::array<PreparedLight, kMaxLights> lights{};
+};
+
+// The layout of a draw with `attribute_count` varyings under `pipeline`'s shading state:
+// Shader::kGouraud (and nothing else set) for the plain Gouraud colour, and for draws that
+// write no colour, whose fragments have no values.
+Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count);
+
+}  // namespace tessera::shade

@@ -1,0 +1,280 @@
+// The fast engine's shaded draws (engine/src/shade/) against the reference: every built-in
+// shader and vision output, every varying mode, RGBA8 and RGBA32F targets, one and four samples,
+// on a perspective mesh with small, large and clipped triangles under a depth test. Coverage
+// is the reference's exactly; values lie within the tolerances docs/SHADING.md states; and
+// every SIMD target this CPU runs gives the same bytes at 1, 2 and 3 threads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "simd/dispatch.hpp"
+#include "tessera/tessera.hpp"
+
+namespace tessera {
+namespace {
+
+constexpr uint32_t kWidth = 100, kHeight = 76;  // two tiles across and down, both partial
+constexpr float kClear = -7.0f;                 // no shaded value is this
+
+// Ten varyings per vertex at the default roles: colour 0..3, normal 4..6, eye-space position
+// 7..9.
+struct Mesh {
+  std::vector<Float4> positions;
+  std::vector<float> varyings;
+  DrawInput input() const { return {positions, varyings, 10, {}}; }
+};
+
+// A perspective projection (60 degrees vertically, near 0.5, far 20) of eye-space points.
+Float4 project(double x, double y, double z) {
+  const double f = 1.0 / std::tan(M_PI / 6.0), aspect = double{kWidth} / kHeight;
+  const double near = 0.5, far = 20.0;
+  return {static_cast<float>(f / aspect * x), static_cast<float>(f * y),
+          static_cast<float>((far + near) / (near - far) * z + 2 * far * near / (near - far)),
+          static_cast<float>(-z)};
+}
+
+void add_vertex(Mesh& m, double x, double y, double z, const std::array<double, 3>& normal,
+                const std::array<double, 4>& colour) {
+  m.positions.push_back(project(x, y, z));
+  for (double c : colour)
+    m.varyings.push_back(static_cast<float>(c));
+  for (double n : normal)
+    m.varyings.push_back(static_cast<float>(n));
+  for (double p : {x, y, z})
+    m.varyings.push_back(static_cast<float>(p));
+}
+
+// A wavy sheet of n x n cells over [x0, x0 + size] x [y0, y0 + size] around depth z0, its
+// normals tilting with the waves, and its colours varying across it.
+void add_sheet(Mesh& m, int n, double x0, double y0, double size, double z0) {
+  const auto vertex = [&](int i, int j) {
+    const double x = x0 + size * i / n, y = y0 + size * j / n;
+    const double z = z0 - 0.4 * std::sin(2.5 * x) * std::cos(1.7 * y) - 0.2 * x;
+    add_vertex(m, x, y, z, {0.4 * std::cos(2.5 * x), -0.3 * std::sin(1.7 * y), 1.0},
+               {double(i) / n, double(j) / n, 0.5 + 0.4 * std::sin(x * y), 0.6 + 0.3 * i / n});
+  };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1);
+      vertex(i, j), vertex(i + 1, j + 1), vertex(i, j + 1);
+    }
+  }
+}
+
+Mesh test_mesh() {
+  Mesh m;
+  add_sheet(m, 12, -2.0, -1.6, 3.4, -4.0);  // medium triangles over most of the view
+  add_sheet(m, 40, -0.6, -0.3, 0.9, -3.2);  // tiny ones in front, partly hiding it
+  add_sheet(m, 2, -1.0, -1.0, 2.2, -6.0);   // large ones behind
+  // A triangle reaching behind the eye: the near plane cuts it.
+  add_vertex(m, -0.8, -0.9, -1.5, {0.1, 0.2, 1.0}, {1.0, 0.2, 0.1, 0.9});
+  add_vertex(m, 0.9, -0.7, 1.0, {-0.2, 0.1, 1.0}, {0.1, 1.0, 0.2, 0.8});
+  add_vertex(m, 0.2, -0.2, -2.5, {0.0, -0.3, 1.0}, {0.2, 0.1, 1.0, 1.0});
+  return m;
+}
+
+struct Case {
+  std::string name;
+  PipelineState pipeline;
+  bool float_only = false;  // IDs need an RGBA32F target
+  // Largest difference from the reference, absolute plus relative to its value (float
+  // targets); RGBA8 targets may differ by one step where a value lies near a rounding edge.
+  double absolute = 0, relative = 0;
+};
+
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  const auto add = [&](std::string name, double absolute, double relative,
+                       const auto& set) -> Case& {
+    Case c;
+    c.name = std::move(name);
+    c.absolute = absolute;
+    c.relative = relative;
+    set(c.pipeline);
+    out.push_back(c);
+    return out.back();
+  };
+  add("phong, three point lights", 2e-5, 0, [](PipelineState& p) {
+    p.shader = FragmentShader::kPhong;
+    p.phong.light_count = 3;
+    p.phong.lights[0].position = {1.5f, 2.0f, -1.0f};
+    p.phong.lights[1].position = {-2.0f, 0.5f, -2.0f};
+    p.phong.lights[1].diffuse = {0.3f, 0.5f, 0.9f};
+    p.phong.lights[1].c1 = 0.2f;
+    p.phong.lights[2].position = {0.0f, -1.5f, -2.5f};
+    p.phong.lights[2].c2 = 0.3f;
+    p.phong.shininess = 40;
+  });
+  add("phong, directional and spot, two-sided, no colour varyings", 2e-5, 0, [](PipelineState& p) {
+    p.shader = FragmentShader::kPhong;
+    p.roles.color = 8;  // two colour varyings: the base colour alone
+    p.phong.two_sided = true;
+    p.phong.base_color = {0.8f, 0.7f, 0.3f, 0.75f};
+    p.phong.light_count = 2;
+    p.phong.lights[0].kind = LightKind::kDirectional;
+    p.phong.lights[0].direction = {-0.3f, -0.5f, -1.0f};
+    p.phong.lights[1].kind = LightKind::kSpot;
+    p.phong.lights[1].position = {0.5f, 0.5f, 0.0f};
+    p.phong.lights[1].direction = {-0.1f, -0.2f, -1.0f};
+    p.phong.lights[1].spot_cos_cutoff = 0.97f;
+    p.phong.lights[1].spot_exponent = 3;
+    p.phong.shininess = 7.5f;
+  });
+  add("phong, affine normals and flat positions", 2e-5, 0, [](PipelineState& p) {
+    p.shader = FragmentShader::kPhong;
+    p.phong.light_count = 1;
+    p.phong.lights[0].position = {0.0f, 1.0f, 0.0f};
+    for (uint32_t i = 4; i < 7; ++i)
+      p.varying_modes[i] = VaryingMode::kAffine;
+    for (uint32_t i = 7; i < 10; ++i)
+      p.varying_modes[i] = VaryingMode::kFlat;
+  });
+  add("flat colour", 0, 0, [](PipelineState& p) {
+    for (uint32_t i = 0; i < 4; ++i)
+      p.varying_modes[i] = VaryingMode::kFlat;
+  });
+  add("gouraud, mixed modes", 2e-6, 0, [](PipelineState& p) {
+    p.varying_modes[0] = VaryingMode::kAffine;
+    p.varying_modes[1] = VaryingMode::kFlat;
+    p.varying_modes[2] = VaryingMode::kPerspective;
+    p.interpolation = Interpolation::kAffine;  // varying 3 (kDefault) affine
+  });
+  add("normals", 2e-6, 0, [](PipelineState& p) { p.output = TargetOutput::kNormal; });
+  add("positions, affine", 2e-6, 1e-6, [](PipelineState& p) {
+    p.output = TargetOutput::kPosition;
+    p.interpolation = Interpolation::kAffine;
+  });
+  add("eye depth", 0, 2e-6, [](PipelineState& p) { p.output = TargetOutput::kEyeDepth; });
+  add("barycentrics", 2e-6, 0, [](PipelineState& p) { p.output = TargetOutput::kBarycentrics; });
+  add("primitive ids", 0, 0, [](PipelineState& p) {
+    p.output = TargetOutput::kPrimitiveId;
+  }).float_only = true;
+  add("object id", 0, 0, [](PipelineState& p) {
+    p.output = TargetOutput::kObjectId;
+    p.object_id = 77;
+  }).float_only = true;
+  return out;
+}
+
+struct Target {
+  SimdTarget simd;
+  uint32_t threads;
+};
+
+std::vector<Target> fast_targets() {
+  std::vector<Target> out;
+  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
+                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
+    if (!simd::is_available(t)) continue;
+    for (uint32_t threads : {1u, 2u, 3u})
+      out.push_back({t, threads});
+  }
+  return out;
+}
+
+struct Image {
+  std::vector<float> rgba32f;
+  std::vector<uint8_t> rgba8;
+};
+
+Image render(const Mesh& mesh, const PipelineState& pipeline, ColorFormat format, uint32_t samples,
+             Backend backend, Target target = {SimdTarget::kAuto, 1}) {
+  RendererOptions options;
+  options.backend = backend;
+  options.simd = target.simd;
+  options.threads = target.threads;
+  Renderer renderer(options);
+  Framebuffer fb({kWidth, kHeight, samples, format});
+  fb.clear_color({kClear, kClear, kClear, kClear});
+  renderer.draw(fb, pipeline, mesh.input());
+  Image image;
+  if (format == ColorFormat::kRGBA8) {
+    image.rgba8 = fb.read_rgba8();
+  } else {
+    image.rgba32f = fb.read_rgba32f();
+  }
+  return image;
+}
+
+TEST(FastShading, EveryShaderAndOutputMatchesTheReferenceOnEveryTargetAndThreadCount) {
+  const Mesh mesh = test_mesh();
+  const std::vector<Target> targets = fast_targets();
+  ASSERT_FALSE(targets.empty());
+  for (const Case& c : cases()) {
+    for (ColorFormat format : {ColorFormat::kRGBA32F, ColorFormat::kRGBA8}) {
+      if (c.float_only && format == ColorFormat::kRGBA8) continue;
+      for (uint32_t samples : {1u, 4u}) {
+        const std::string what = c.name +
+                                 (format == ColorFormat::kRGBA8 ? ", RGBA8" : ", RGBA32F") + ", " +
+                                 std::to_string(samples) + " samples";
+        PipelineState pipeline = c.pipeline;
+        pipeline.cull = CullMode::kNone;
+        const Image want = render(mesh, pipeline, format, samples, Backend::kReference);
+        const Image first = render(mesh, pipeline, format, samples, Backend::kFast, targets[0]);
+        // Same bytes on every target and at every thread count.
+        for (const Target& t : targets) {
+          const Image got = render(mesh, pipeline, format, samples, Backend::kFast, t);
+          ASSERT_EQ(got.rgba32f, first.rgba32f)
+              << what << ", target " << int(t.simd) << ", " << t.threads << " threads";
+          ASSERT_EQ(got.rgba8, first.rgba8) << what << ", target " << int(t.simd);
+        }
+        size_t covered = 0;
+        if (format == ColorFormat::kRGBA32F) {
+          for (size_t i = 0; i < want.rgba32f.size(); ++i) {
+            const float w = want.rgba32f[i], g = first.rgba32f[i];
+            ASSERT_EQ(w == kClear, g == kClear) << what << ": coverage differs at value " << i;
+            if (w == kClear) continue;
+            covered += i % 4 == 3;
+            const double error = std::abs(double{g} - w);
+            ASSERT_LE(error, c.absolute + c.relative * std::abs(w))
+                << what << ": value " << i << " (pixel " << i / 4 << ") " << g << " against " << w;
+          }
+        } else {
+          // Alpha is never 0 here: a byte of 0 (the clear) in alpha is an uncovered pixel.
+          for (size_t i = 0; i < want.rgba8.size(); ++i) {
+            if (i % 4 == 3) {
+              ASSERT_EQ(want.rgba8[i] == 0, first.rgba8[i] == 0) << what << ": coverage at " << i;
+            }
+            const int error = std::abs(int{want.rgba8[i]} - first.rgba8[i]);
+            covered += i % 4 == 3 && want.rgba8[i] != 0;
+            ASSERT_LE(error, 1) << what << ": byte " << i;
+          }
+        }
+        EXPECT_GT(covered, size_t{kWidth * kHeight / 2}) << what;  // most of the view
+      }
+    }
+  }
+}
+
+// A shaded draw writes exactly the samples the Gouraud draw of the same triangles does, and the
+// same depth: only the colour differs.
+TEST(FastShading, ShadedDrawsCoverAndDepthTestLikeGouraudDraws) {
+  const Mesh mesh = test_mesh();
+  for (uint32_t samples : {1u, 2u, 4u}) {
+    PipelineState gouraud, phong;
+    phong.shader = FragmentShader::kPhong;
+    phong.phong.light_count = 1;
+    RendererOptions options;
+    Renderer renderer(options);
+    Framebuffer a({kWidth, kHeight, samples, ColorFormat::kRGBA8});
+    Framebuffer b({kWidth, kHeight, samples, ColorFormat::kRGBA8});
+    renderer.draw(a, gouraud, mesh.input());
+    const Counters gouraud_counts = renderer.counters();
+    renderer.reset_counters();
+    renderer.draw(b, phong, mesh.input());
+    const Counters phong_counts = renderer.counters();
+    EXPECT_EQ(a.read_depth(), b.read_depth()) << samples;
+    EXPECT_EQ(gouraud_counts.samples_covered, phong_counts.samples_covered);
+    EXPECT_EQ(gouraud_counts.samples_passed, phong_counts.samples_passed);
+    EXPECT_EQ(gouraud_counts.triangles_rasterized, phong_counts.triangles_rasterized);
+    EXPECT_NE(a.read_rgba8(), b.read_rgba8());
+  }
+}
+
+}  // namespace
+}  // namespace tessera
