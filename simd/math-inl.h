@@ -12,6 +12,8 @@
 #define TESSERA_SIMD_MATH_INL_H_
 #endif
 
+#include <cstdint>
+
 #include <hwy/highway.h>
 
 HWY_BEFORE_NAMESPACE();
@@ -67,11 +69,31 @@ HWY_INLINE VF exp2_nonpositive(DF df, VF y) {
   return hn::IfThenZeroElse(tiny, result);
 }
 
+// The largest whole exponent pow_unit forms by repeated squaring: at most 2 log2(n) rounded
+// products, each within half an ulp, so the result's relative error stays below about n ulp.
+inline constexpr float kMaxSquaringExponent = 128.0f;
+
 // x^n for x in [0, 1] and a constant n >= 0, as std::pow gives it there: 1 where n = 0 (0^0
-// included), 0 where x = 0 < n; x below the smallest normal float counts as 0.
+// included), 0 where x = 0 < n. Whole n up to kMaxSquaringExponent (Phong's usual shininess)
+// by repeated squaring; other n as 2^(n log2 x), where x below the smallest normal float
+// counts as 0.
 template <class DF, class VF = hn::Vec<DF>>
 HWY_INLINE VF pow_unit(DF df, VF x, float n) {
   if (n == 0.0f) return hn::Set(df, 1.0f);
+  if (n <= kMaxSquaringExponent && n == static_cast<float>(static_cast<uint32_t>(n))) {
+    uint32_t e = static_cast<uint32_t>(n);
+    // The powers x^(2^i) for the set bits of e, lowest first, multiplied together.
+    while ((e & 1u) == 0) {
+      x = hn::Mul(x, x);
+      e >>= 1;
+    }
+    VF result = x;
+    for (e >>= 1; e != 0; e >>= 1) {
+      x = hn::Mul(x, x);
+      if (e & 1u) result = hn::Mul(result, x);
+    }
+    return result;
+  }
   const auto normal = hn::Ge(x, hn::Set(df, 1.17549435e-38f));
   const auto safe = hn::IfThenElse(normal, x, hn::Set(df, 1.0f));
   const auto y = hn::Mul(log2_positive(df, safe), hn::Set(df, n));

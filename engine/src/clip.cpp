@@ -14,7 +14,10 @@ enum class Pin { kZZero, kZToW, kWMin, kXMinus, kXPlus, kYMinus, kYPlus };
 struct Plane {
   double a, b, c, e, f;
   Pin pin;
-  double distance(const ClipVertex& v) const { return a * v.x + b * v.y + c * v.z + e * v.w + f; }
+  double distance(double x, double y, double z, double w) const {
+    return a * x + b * y + c * z + e * w + f;
+  }
+  double distance(const ClipVertex& v) const { return distance(v.x, v.y, v.z, v.w); }
   // Puts an interpolated vertex exactly on the plane, and back inside the planes applied
   // before this one (they precede it in clip_planes()). Interpolating across a huge range of w
   // (say from 1e38 to 1e-30) cancels catastrophically, and the result could leave an earlier
@@ -112,6 +115,13 @@ PlaneSet clip_planes(GuardBand guard_band) {
 }
 
 }  // namespace
+
+bool inside_clip_planes(double x, double y, double z, double w, GuardBand guard_band) {
+  for (const Plane& plane : clip_planes(guard_band)) {
+    if (!(plane.distance(x, y, z, w) >= 0.0)) return false;
+  }
+  return true;
+}
 
 ClipResult clip_triangle(const std::array<ClipVertex, 3>& in, uint32_t attribute_count,
                          GuardBand guard_band, ClipPolygon& out) {

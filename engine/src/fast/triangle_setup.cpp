@@ -296,61 +296,70 @@ void setup_shaded_triangle(const SetupContext& ctx, const shade::Layout& layout,
                            SetupList& out, PlaneList& planes, Counters& counters) {
   ++counters.triangles_submitted;
   const bool gl_depth = ctx.pipeline->clip_depth == ClipDepth::kNegativeOneToOne;
-  std::array<ClipVertex, 3> tri;
+  // Each vertex's position (OpenGL's z as setup_triangle maps it) and interpolant values.
+  std::array<std::array<double, 4>, 3> clip;
+  std::array<std::array<double, shade::kMaxInterpolants>, 3> value;
+  bool inside = true;
   for (int k = 0; k < 3; ++k) {
     const Float4& p = *positions[k];
-    tri[k].x = p.x;
-    tri[k].y = p.y;
-    tri[k].w = p.w;
-    tri[k].z = gl_depth ? 0.5 * (double{p.z} + p.w) : p.z;  // as setup_triangle
+    clip[k] = {p.x, p.y, gl_depth ? 0.5 * (double{p.z} + p.w) : p.z, p.w};
+    inside = inside &&
+             inside_clip_planes(clip[k][0], clip[k][1], clip[k][2], clip[k][3], ctx.guard_band);
     for (uint32_t j = 0; j < layout.count; ++j) {
       const shade::Interpolant& in = layout.values[j];
-      double value = 0.0;
       switch (in.source) {
         case shade::Source::kVarying:
-          value = varyings[k][in.index];
+          value[k][j] = varyings[k][in.index];
           break;
         case shade::Source::kClipW:
-          value = p.w;
+          value[k][j] = p.w;
           break;
         case shade::Source::kBarycentric:
-          value = in.index == static_cast<uint32_t>(k) ? 1.0 : 0.0;
+          value[k][j] = in.index == static_cast<uint32_t>(k) ? 1.0 : 0.0;
           break;
         case shade::Source::kPrimitive:
-          value = primitive;
+          value[k][j] = primitive;
           break;
       }
-      tri[k].attributes[j] = value;
     }
   }
-  std::array<double, shade::kMaxInterpolants> flat{};
-  for (uint32_t j = 0; j < layout.count; ++j)
-    flat[j] = tri[0].attributes[j];  // the provoking vertex, clipped or not
+  // The flat interpolants take the provoking vertex's values, clipped or not.
+  const ShadedPlanes shaded{layout, value[0], planes};
+  if (inside) {
+    // No plane cuts it (nearly every triangle): the clipper would return it as it is.
+    std::array<Snapped, 3> s;
+    for (int k = 0; k < 3; ++k) {
+      s[k] = snap(clip[k][0], clip[k][1], clip[k][2], clip[k][3], ctx);
+      std::copy_n(value[k].begin(), layout.count, s[k].value.begin());
+    }
+    setup_snapped(ctx, s, out, counters, &shaded);
+    return;
+  }
   // Affine values are clipped as a * w and divided by the new w (see setup_triangle).
   const auto affine = [&](uint32_t j) { return layout.values[j].mode == VaryingMode::kAffine; };
-  std::array<ClipVertex, 3> to_clip = tri;
-  for (ClipVertex& c : to_clip) {
-    for (uint32_t j = 0; j < layout.count; ++j) {
-      if (affine(j)) c.attributes[j] *= c.w;
-    }
+  std::array<ClipVertex, 3> tri;
+  for (int k = 0; k < 3; ++k) {
+    tri[k].x = clip[k][0];
+    tri[k].y = clip[k][1];
+    tri[k].z = clip[k][2];
+    tri[k].w = clip[k][3];
+    for (uint32_t j = 0; j < layout.count; ++j)
+      tri[k].attributes[j] = affine(j) ? value[k][j] * tri[k].w : value[k][j];
   }
   ClipPolygon polygon;
-  const ClipResult clip = clip_triangle(to_clip, layout.count, ctx.guard_band, polygon);
-  if (clip.clipped) ++counters.triangles_clipped;
-  if (!clip.visible) {
+  const ClipResult clip_result = clip_triangle(tri, layout.count, ctx.guard_band, polygon);
+  if (clip_result.clipped) ++counters.triangles_clipped;
+  if (!clip_result.visible) {
     ++counters.triangles_culled;
     return;
   }
   std::array<Snapped, kMaxClipVertices> s;
   for (int i = 0; i < polygon.count; ++i) {
-    // Uncut: the values exactly as given (as the reference takes them).
-    const ClipVertex& v = clip.clipped ? polygon.vertices[i] : tri[i];
-    s[i] = snap(polygon.vertices[i].x, polygon.vertices[i].y, polygon.vertices[i].z,
-                polygon.vertices[i].w, ctx);
+    const ClipVertex& v = polygon.vertices[i];
+    s[i] = snap(v.x, v.y, v.z, v.w, ctx);
     for (uint32_t j = 0; j < layout.count; ++j)
-      s[i].value[j] = clip.clipped && affine(j) ? v.attributes[j] / v.w : v.attributes[j];
+      s[i].value[j] = affine(j) ? v.attributes[j] / v.w : v.attributes[j];
   }
-  const ShadedPlanes shaded{layout, flat, planes};
   for (int i = 1; i + 1 < polygon.count; ++i)
     setup_snapped(ctx, {s[0], s[i], s[i + 1]}, out, counters, &shaded);
 }

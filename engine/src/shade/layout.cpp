@@ -89,6 +89,8 @@ Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count) {
       out.c0 = in.c0;
       out.c1 = in.c1;
       out.c2 = in.c2;
+      out.constant_attenuation = in.c1 == 0.0f && in.c2 == 0.0f;
+      out.attenuation = 1.0f / in.c0;
       out.spot_cos_cutoff = in.spot_cos_cutoff;
       out.spot_exponent = in.spot_exponent;
     }

@@ -49,6 +49,10 @@ struct PreparedLight {
   std::array<float, 3> axis{};      // spot: the unit direction the light travels
   std::array<float, 3> diffuse{}, specular{};
   float c0 = 1, c1 = 0, c2 = 0;
+  // c1 = c2 = 0: the attenuation 1 / c0 is the same everywhere (the same float the per-pixel
+  // division gives, as 0 d and 0 d^2 are 0).
+  bool constant_attenuation = true;
+  float attenuation = 1;
   float spot_cos_cutoff = 0, spot_exponent = 0;
 };
 

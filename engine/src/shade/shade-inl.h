@@ -86,10 +86,14 @@ HWY_INLINE void phong(DF df, const Layout& layout, VF nx, VF ny, VF nz, VF px, V
       ly = hn::Sub(hn::Set(df, light.position[1]), py);
       lz = hn::Sub(hn::Set(df, light.position[2]), pz);
       const auto distance = normalize(df, lx, ly, lz);
-      const auto falloff =
-          hn::Add(hn::Add(hn::Set(df, light.c0), hn::Mul(hn::Set(df, light.c1), distance)),
-                  hn::Mul(hn::Mul(hn::Set(df, light.c2), distance), distance));
-      attenuation = hn::Div(hn::Set(df, 1.0f), falloff);
+      if (light.constant_attenuation) {
+        attenuation = hn::Set(df, light.attenuation);
+      } else {
+        const auto falloff =
+            hn::Add(hn::Add(hn::Set(df, light.c0), hn::Mul(hn::Set(df, light.c1), distance)),
+                    hn::Mul(hn::Mul(hn::Set(df, light.c2), distance), distance));
+        attenuation = hn::Div(hn::Set(df, 1.0f), falloff);
+      }
       if (light.kind == LightKind::kSpot) {
         const auto cosine = hn::Neg(dot(lx, ly, lz, hn::Set(df, light.axis[0]),
                                         hn::Set(df, light.axis[1]), hn::Set(df, light.axis[2])));
