@@ -68,12 +68,13 @@ TESSERA_API const char* tessera_result_name(tessera_result result);
  * what alloc returned. Both get `user`. Both must be set; the struct is copied at creation and
  * used until the handle is destroyed.
  *
- * What goes through them: the handle object itself (a tessera_renderer or tessera_framebuffer:
- * the C++ object's header, a few hundred bytes). What does not, and comes from the C++ runtime
- * (operator new) or oneTBB instead: the framebuffer's sample planes and Hi-Z bounds, the
+ * What goes through them: the handle object itself, that is the C++ tessera::Renderer or
+ * tessera::Framebuffer object (a pointer to its state) and the copy of these callbacks, a few
+ * dozen bytes. Everything that C++ object allocates comes from the C++ runtime (operator new)
+ * or oneTBB instead: its state, the framebuffer's sample planes and Hi-Z bounds, the
  * renderer's bins, setups and scratch, its oneTBB arena and worker threads, and the temporary
- * resolved image of each read-back call (freed before it returns). These buffers are shared
- * with the engine's SIMD kernels, which allocate them cache-aligned themselves. */
+ * resolved image of each read-back call (freed before it returns). The large buffers are
+ * shared with the engine's SIMD kernels, which allocate them cache-aligned themselves. */
 typedef struct tessera_allocator {
   void* (*alloc)(size_t size, size_t alignment, void* user);
   void (*free)(void* ptr, void* user);
