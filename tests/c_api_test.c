@@ -477,6 +477,10 @@ static void check_errors(void) {
   missing.index_count = 3;
   EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &missing), bad_arg,
                "tessera_draw_triangles", "indices is NULL, but index_count is 3");
+  missing = input;
+  missing.vertex_count = SIZE_MAX;
+  EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &missing), bad_arg,
+               "tessera_draw_triangles", "is larger than any array");
   /* Destroying NULL does nothing. */
   tessera_framebuffer_destroy(NULL);
   tessera_renderer_destroy(NULL);
