@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstring>
 #include <new>
+#include <ostream>
 #include <string>
 #include <thread>
 #include <utility>
@@ -132,6 +133,12 @@ struct Config {
   uint32_t samples;
   tessera::ColorFormat color;
   tessera::DepthFormat depth;
+  friend std::string name(const Config& c) {
+    return std::string(c.backend == tessera::Backend::kFast ? "Fast" : "Reference") +
+           std::to_string(c.samples) + "x" +
+           (c.color == tessera::ColorFormat::kRGBA8 ? "Rgba8" : "Rgba32f");
+  }
+  friend void PrintTo(const Config& c, std::ostream* os) { *os << name(c); }
 };
 
 class CApiEquivalence : public ::testing::TestWithParam<Config> {};
@@ -307,12 +314,7 @@ INSTANTIATE_TEST_SUITE_P(
                              tessera::DepthFormat::kUnorm16},
                       Config{tessera::Backend::kReference, 4, tessera::ColorFormat::kRGBA8,
                              tessera::DepthFormat::kFloat32}),
-    [](const ::testing::TestParamInfo<Config>& param) {
-      const Config& c = param.param;
-      return std::string(c.backend == tessera::Backend::kFast ? "Fast" : "Reference") +
-             std::to_string(c.samples) + "x" +
-             (c.color == tessera::ColorFormat::kRGBA8 ? "Rgba8" : "Rgba32f");
-    });
+    [](const ::testing::TestParamInfo<Config>& param) { return name(param.param); });
 
 // The shading state crosses the C API field by field: Phong with a point and a spot light,
 // two-sided, changed roles, per-varying modes, and the vision outputs (the reference backend
