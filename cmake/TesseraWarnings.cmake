@@ -27,8 +27,10 @@ if(TESSERA_FUZZING)
 endif()
 
 function(tessera_set_warnings target)
+  # -Wnon-virtual-dtor is C++ only (the C API's test and example are C).
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
-                                           -Wno-sign-conversion -Wnon-virtual-dtor)
+                                           -Wno-sign-conversion
+                                           $<$<COMPILE_LANGUAGE:CXX>:-Wnon-virtual-dtor>)
   if(TESSERA_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Proves that applications can build against Tessera the ways the README documents, with the
-# application of tests/package/consumer (one triangle through the public API, a pixel checked):
+# applications of tests/package/consumer (one triangle through the public API, a pixel checked;
+# main.cpp through the C++ API, main.c through the C API):
 #   1. the static library of BUILD_DIR installed into a temporary prefix holds exactly the public
 #      headers (none of engine/src, simd or binning), and its core target's link interface names
 #      neither Assimp nor OpenImageIO;
@@ -67,6 +68,7 @@ build_and_run() {
     fail "building the consumer in $dir"
   }
   "$dir/consumer" "$tmp" || fail "running $dir/consumer"
+  "$dir/consumer_c" || fail "running $dir/consumer_c"
 }
 consumer() {
   local dir=$1
@@ -75,12 +77,13 @@ consumer() {
   build_and_run "$dir"
 }
 
-# Exactly the public headers: engine/include/tessera/*.hpp and the generated version.hpp.
+# Exactly the public headers: engine/include/tessera/*.hpp, the C API's tessera.h and the
+# generated version.hpp.
 check_headers() {
   local prefix=$1 expected installed
   expected=$( (
     cd "$src/engine/include"
-    ls tessera/*.hpp
+    ls tessera/*.hpp tessera/*.h
     echo tessera/version.hpp
   ) | sort)
   installed=$(cd "$prefix/include" && find . -type f | sed 's|^\./||' | sort)
@@ -114,6 +117,13 @@ export PKG_CONFIG_PATH=$pc_dir
 "$cxx" -std=c++20 -DTESSERA_CONSUMER_IO "$consumer_src/main.cpp" -o "$tmp/pkgconfig-io" \
   $(pkg-config --cflags --libs tessera-io)
 "$tmp/pkgconfig-io" "$tmp" || fail "running the pkg-config consumer of tessera-io"
+# The C program is compiled by the C compiler and linked by the C++ one (Tessera is C++).
+# shellcheck disable=SC2046
+"${CC:-cc}" -std=c11 -c "$consumer_src/main.c" -o "$tmp/pkgconfig-c.o" \
+  $(pkg-config --cflags tessera)
+# shellcheck disable=SC2046
+"$cxx" "$tmp/pkgconfig-c.o" -o "$tmp/pkgconfig-c" $(pkg-config --libs tessera)
+"$tmp/pkgconfig-c" || fail "running the pkg-config consumer of the C API"
 unset PKG_CONFIG_PATH
 
 # No CMAKE_BUILD_TYPE: the consumer checks that Tessera does not set one.
@@ -152,6 +162,13 @@ for lib in libtessera libtessera_io; do
 $internal"
   echo "$lib.so: soname $soname, $(echo "$exported" | grep -c 'tessera::') tessera symbols exported"
 done
+# The C API's functions are exported under their C names.
+c_exported=$(nm -D --defined-only "$libdir/libtessera.so" | awk '$3 ~ /^tessera_/ { print $3 }')
+for symbol in tessera_renderer_create tessera_draw_triangles tessera_framebuffer_read_depth \
+  tessera_last_error_message; do
+  echo "$c_exported" | grep -qx "$symbol" || fail "libtessera.so does not export $symbol"
+done
+echo "libtessera.so: $(echo "$c_exported" | wc -l) C API functions exported"
 consumer "$tmp/package-shared" -DCMAKE_PREFIX_PATH="$tmp/shared" -DCMAKE_BUILD_TYPE=Release
 consumer "$tmp/package-shared-io" -DCMAKE_PREFIX_PATH="$tmp/shared" -DCMAKE_BUILD_TYPE=Release \
   -DTESSERA_CONSUMER_IO=ON
