@@ -225,6 +225,31 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   out.push_back(t);
 }
 
+// Clips triangle `tri`, whose first `count` values the clipper carries (those for which
+// affine(j) holds as a * w: see setup_triangle), and sets up each piece of the fan it leaves
+// with its values divided back by w where affine; `shaded` as setup_snapped's.
+template <class Affine>
+void clip_and_set_up(const SetupContext& ctx, const std::array<ClipVertex, 3>& tri, uint32_t count,
+                     const Affine& affine, SetupList& out, Counters& counters,
+                     const ShadedPlanes* shaded) {
+  ClipPolygon polygon;
+  const ClipResult clip = clip_triangle(tri, count, ctx.guard_band, polygon);
+  if (clip.clipped) ++counters.triangles_clipped;
+  if (!clip.visible) {
+    ++counters.triangles_culled;
+    return;
+  }
+  std::array<Snapped, kMaxClipVertices> s;
+  for (int i = 0; i < polygon.count; ++i) {
+    const ClipVertex& v = polygon.vertices[i];
+    s[i] = snap(v.x, v.y, v.z, v.w, ctx);
+    for (uint32_t j = 0; j < count; ++j)
+      s[i].value[j] = affine(j) ? v.attributes[j] / v.w : v.attributes[j];
+  }
+  for (int i = 1; i + 1 < polygon.count; ++i)
+    setup_snapped(ctx, {s[0], s[i], s[i + 1]}, out, counters, shaded);
+}
+
 // The colour attributes of a vertex: the first four, missing ones (0, 0, 0, 1).
 std::array<double, 4> color_of(const float* attributes, uint32_t count) {
   std::array<double, 4> c{0.0, 0.0, 0.0, 1.0};
@@ -272,22 +297,8 @@ void setup_triangle(const SetupContext& ctx, const std::array<const Float4*, 3>&
     for (int i = 0; i < 4; ++i)
       tri[k].attributes[i] = affine ? c[i] * tri[k].w : c[i];
   }
-  ClipPolygon polygon;
-  const ClipResult clip = clip_triangle(tri, 4, ctx.guard_band, polygon);
-  if (clip.clipped) ++counters.triangles_clipped;
-  if (!clip.visible) {
-    ++counters.triangles_culled;
-    return;
-  }
-  std::array<Snapped, kMaxClipVertices> s;
-  for (int i = 0; i < polygon.count; ++i) {
-    const ClipVertex& v = polygon.vertices[i];
-    s[i] = snap(v.x, v.y, v.z, v.w, ctx);
-    for (int c = 0; c < 4; ++c)
-      s[i].value[c] = affine ? v.attributes[c] / v.w : v.attributes[c];
-  }
-  for (int i = 1; i + 1 < polygon.count; ++i)
-    setup_snapped(ctx, {s[0], s[i], s[i + 1]}, out, counters);
+  clip_and_set_up(
+      ctx, tri, 4, [&](uint32_t) { return affine; }, out, counters, nullptr);
 }
 
 void setup_shaded_triangle(const SetupContext& ctx, const shade::Layout& layout,
@@ -346,22 +357,7 @@ void setup_shaded_triangle(const SetupContext& ctx, const shade::Layout& layout,
     for (uint32_t j = 0; j < layout.count; ++j)
       tri[k].attributes[j] = affine(j) ? value[k][j] * tri[k].w : value[k][j];
   }
-  ClipPolygon polygon;
-  const ClipResult clip_result = clip_triangle(tri, layout.count, ctx.guard_band, polygon);
-  if (clip_result.clipped) ++counters.triangles_clipped;
-  if (!clip_result.visible) {
-    ++counters.triangles_culled;
-    return;
-  }
-  std::array<Snapped, kMaxClipVertices> s;
-  for (int i = 0; i < polygon.count; ++i) {
-    const ClipVertex& v = polygon.vertices[i];
-    s[i] = snap(v.x, v.y, v.z, v.w, ctx);
-    for (uint32_t j = 0; j < layout.count; ++j)
-      s[i].value[j] = affine(j) ? v.attributes[j] / v.w : v.attributes[j];
-  }
-  for (int i = 1; i + 1 < polygon.count; ++i)
-    setup_snapped(ctx, {s[0], s[i], s[i + 1]}, out, counters, &shaded);
+  clip_and_set_up(ctx, tri, layout.count, affine, out, counters, &shaded);
 }
 
 void setup_shaded_range(const SetupContext& ctx, const shade::Layout& layout,
