@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <span>
@@ -18,15 +19,20 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include "tessera/error.hpp"
 #include "tessera/framebuffer.hpp"
+#include "tessera/mesh.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
 #include "tessera/shading.hpp"
 #include "tessera/types.hpp"
 #include "tessera/version.hpp"
+#if TESSERA_PYTHON_IO
+#include "tessera/mesh_io.hpp"
+#endif
 
 namespace py = pybind11;
 
@@ -226,6 +232,15 @@ void def_vec3(py::class_<Class>& cls, const char* field, glm::vec3 Class::*membe
       [member](Class& self, const std::array<float, 3>& v) {
         self.*member = {v[0], v[1], v[2]};
       });
+}
+
+// Copies `count` rows of `columns` floats (glm vectors) into an (count, columns) array.
+template <class Vector>
+py::array_t<float> rows_to_numpy(const std::vector<Vector>& rows, py::ssize_t columns) {
+  static_assert(sizeof(Vector) % sizeof(float) == 0);
+  std::vector<float> values(rows.size() * sizeof(Vector) / sizeof(float));
+  std::memcpy(values.data(), rows.data(), values.size() * sizeof(float));
+  return to_numpy(std::move(values), {static_cast<py::ssize_t>(rows.size()), columns});
 }
 
 void draw(Renderer& renderer, Framebuffer& target, const py::array& positions,
@@ -510,6 +525,41 @@ PYBIND11_MODULE(tessera, m) {
       py::arg("positions"), py::arg("mvp"),
       "Transforms (n, 3) float32 positions by a 4x4 float32 matrix to (n, 4) clip space, as the "
       "C++ scene layer does.");
+
+  py::class_<tessera::Mesh>(m, "Mesh",
+                            "A triangle mesh; its arrays are copies: positions and normals "
+                            "(n, 3) float32, colors (n, 4) float32, indices (m, 3) uint32.")
+      .def_property_readonly(
+          "positions", [](const tessera::Mesh& self) { return rows_to_numpy(self.positions, 3); })
+      .def_property_readonly(
+          "normals", [](const tessera::Mesh& self) { return rows_to_numpy(self.normals, 3); })
+      .def_property_readonly(
+          "colors", [](const tessera::Mesh& self) { return rows_to_numpy(self.colors, 4); })
+      .def_property_readonly("indices",
+                             [](const tessera::Mesh& self) {
+                               std::vector<uint32_t> indices = self.indices;
+                               const auto rows = static_cast<py::ssize_t>(indices.size() / 3);
+                               return to_numpy(std::move(indices), {rows, 3});
+                             })
+      .def_property_readonly("triangle_count", &tessera::Mesh::triangle_count)
+      .def(
+          "bounds",
+          [](const tessera::Mesh& self) {
+            const tessera::Bounds b = tessera::mesh_bounds(self);
+            return std::pair(std::array<float, 3>{b.min.x, b.min.y, b.min.z},
+                             std::array<float, 3>{b.max.x, b.max.y, b.max.z});
+          },
+          "The mesh's axis-aligned box as ((min x, y, z), (max x, y, z)).");
+#if TESSERA_PYTHON_IO
+  m.def(
+      "load_mesh",
+      [](const std::filesystem::path& path) {
+        py::gil_scoped_release release;
+        return tessera::load_mesh(path);
+      },
+      py::arg("path"),
+      "Loads every triangle of a Wavefront OBJ, glTF 2.0 or PLY file into one Mesh (Assimp).");
+#endif
 
   py::class_<Renderer>(m, "Renderer",
                        "Draws triangles into framebuffers on its own threads (0: all cores). "
