@@ -8,6 +8,7 @@ packages=(
   libglm-dev libtbb-dev libhwy-dev libopenimageio-dev openimageio-tools libassimp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libosmesa6-dev g++-aarch64-linux-gnu
   assimp-testmodels python3-matplotlib
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 missing=()

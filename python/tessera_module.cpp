@@ -1,0 +1,585 @@
+// The Python module `tessera`: the C++ API's renderer, framebuffer and pipeline state bound with
+// pybind11, vertex data read from NumPy arrays in place and images returned as NumPy arrays.
+// The checks are the C++ API's own (tessera::Error becomes ValueError, MemoryError or
+// RuntimeError with its message); this layer adds only what Python can get wrong and C++
+// cannot: an array's dtype, dimensions, memory layout, and enumerations given as strings.
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "tessera/error.hpp"
+#include "tessera/framebuffer.hpp"
+#include "tessera/mesh.hpp"
+#include "tessera/pipeline.hpp"
+#include "tessera/renderer.hpp"
+#include "tessera/scene.hpp"
+#include "tessera/shading.hpp"
+#include "tessera/types.hpp"
+#include "tessera/version.hpp"
+#if TESSERA_PYTHON_IO
+#include "tessera/mesh_io.hpp"
+#endif
+
+namespace py = pybind11;
+
+namespace {
+
+using tessera::Backend;
+using tessera::ColorFormat;
+using tessera::CompareOp;
+using tessera::CullMode;
+using tessera::DepthFormat;
+using tessera::Error;
+using tessera::ErrorCode;
+using tessera::FragmentShader;
+using tessera::Framebuffer;
+using tessera::FrontFace;
+using tessera::Interpolation;
+using tessera::Light;
+using tessera::LightKind;
+using tessera::PhongState;
+using tessera::PipelineState;
+using tessera::Renderer;
+using tessera::TargetOutput;
+using tessera::VaryingMode;
+using tessera::VaryingRoles;
+
+// ---- Enumerations as strings -------------------------------------------------------------
+
+template <class E>
+using Names = std::span<const std::pair<std::string_view, E>>;
+
+constexpr std::pair<std::string_view, Backend> kBackendNames[] = {
+    {"fast", Backend::kFast}, {"reference", Backend::kReference}};
+constexpr std::pair<std::string_view, ColorFormat> kColorNames[] = {
+    {"rgba8", ColorFormat::kRGBA8}, {"rgba32f", ColorFormat::kRGBA32F}};
+constexpr std::pair<std::string_view, DepthFormat> kDepthNames[] = {
+    {"float32", DepthFormat::kFloat32},
+    {"unorm24", DepthFormat::kUnorm24},
+    {"unorm16", DepthFormat::kUnorm16}};
+constexpr std::pair<std::string_view, CompareOp> kCompareNames[] = {
+    {"never", CompareOp::kNever},
+    {"less", CompareOp::kLess},
+    {"equal", CompareOp::kEqual},
+    {"less_equal", CompareOp::kLessEqual},
+    {"greater", CompareOp::kGreater},
+    {"not_equal", CompareOp::kNotEqual},
+    {"greater_equal", CompareOp::kGreaterEqual},
+    {"always", CompareOp::kAlways}};
+constexpr std::pair<std::string_view, CullMode> kCullNames[] = {
+    {"none", CullMode::kNone}, {"front", CullMode::kFront}, {"back", CullMode::kBack}};
+constexpr std::pair<std::string_view, FrontFace> kFrontFaceNames[] = {
+    {"ccw", FrontFace::kCounterClockwise}, {"cw", FrontFace::kClockwise}};
+constexpr std::pair<std::string_view, tessera::ClipDepth> kClipDepthNames[] = {
+    {"zero_to_one", tessera::ClipDepth::kZeroToOne},
+    {"negative_one_to_one", tessera::ClipDepth::kNegativeOneToOne}};
+constexpr std::pair<std::string_view, Interpolation> kInterpolationNames[] = {
+    {"perspective", Interpolation::kPerspective}, {"affine", Interpolation::kAffine}};
+constexpr std::pair<std::string_view, VaryingMode> kVaryingModeNames[] = {
+    {"default", VaryingMode::kDefault},
+    {"perspective", VaryingMode::kPerspective},
+    {"affine", VaryingMode::kAffine},
+    {"flat", VaryingMode::kFlat}};
+constexpr std::pair<std::string_view, FragmentShader> kShaderNames[] = {
+    {"gouraud", FragmentShader::kGouraud}, {"phong", FragmentShader::kPhong}};
+constexpr std::pair<std::string_view, TargetOutput> kOutputNames[] = {
+    {"color", TargetOutput::kColor},
+    {"eye_depth", TargetOutput::kEyeDepth},
+    {"normal", TargetOutput::kNormal},
+    {"position", TargetOutput::kPosition},
+    {"barycentrics", TargetOutput::kBarycentrics},
+    {"primitive_id", TargetOutput::kPrimitiveId},
+    {"object_id", TargetOutput::kObjectId}};
+constexpr std::pair<std::string_view, LightKind> kLightKindNames[] = {
+    {"directional", LightKind::kDirectional},
+    {"point", LightKind::kPoint},
+    {"spot", LightKind::kSpot}};
+
+template <class E>
+E parse(Names<E> names, std::string_view what, std::string_view value) {
+  std::string choices;
+  for (const auto& [name, e] : names) {
+    if (name == value) return e;
+    choices += (choices.empty() ? "\"" : ", \"") + std::string(name) + "\"";
+  }
+  throw py::value_error(std::string(what) + " \"" + std::string(value) + "\" is not one of " +
+                        choices);
+}
+
+template <class E>
+std::string name_of(Names<E> names, E value) {
+  for (const auto& [name, e] : names) {
+    if (e == value) return std::string(name);
+  }
+  return "invalid";
+}
+
+// A read-write string property for an enumeration member of a bound struct.
+template <class E, class Class>
+void def_enum(py::class_<Class>& cls, const char* field, E Class::*member, Names<E> names) {
+  cls.def_property(
+      field, [member, names](const Class& self) { return name_of(names, self.*member); },
+      [member, names, field](Class& self, std::string_view value) {
+        self.*member = parse(names, field, value);
+      });
+}
+
+// A bound struct built from keyword arguments: each sets the attribute of that name, so an
+// unknown name is an AttributeError and a bad value the attribute's own error.
+template <class T>
+T from_kwargs(const py::kwargs& kwargs) {
+  T value{};
+  py::object self = py::cast(&value, py::return_value_policy::reference);
+  for (const auto& [key, item] : kwargs)
+    py::setattr(self, key, item);
+  return value;
+}
+
+// Rows of float32 arrays are read in place as these types.
+static_assert(sizeof(tessera::Float4) == 4 * sizeof(float));
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+
+// ---- NumPy arrays --------------------------------------------------------------------------
+
+// Checks what only Python can get wrong about a vertex array: its dtype, its number of
+// dimensions and (for `columns` > 0) its row length, and a layout the renderer can read in
+// place (C-contiguous and aligned). Counts and values are the C++ API's checks.
+template <class T>
+void check_array(const py::array& array, const char* name, const char* dtype, int ndim,
+                 py::ssize_t columns) {
+  if (!py::isinstance<py::array_t<T>>(array)) {
+    throw py::type_error(std::string(name) + " must be a " + dtype + " array, got dtype " +
+                         py::str(array.dtype()).cast<std::string>());
+  }
+  if (array.ndim() != ndim || (columns > 0 && array.shape(ndim - 1) != columns)) {
+    std::string shape = "(";
+    for (py::ssize_t i = 0; i < array.ndim(); ++i) {
+      if (i > 0) shape += ", ";
+      shape += std::to_string(array.shape(i));
+    }
+    shape += array.ndim() == 1 ? ",)" : ")";
+    std::string expected = ndim == 1     ? "(n,)"
+                           : columns > 0 ? "(n, " + std::to_string(columns) + ")"
+                                         : "(n, k)";
+    throw py::value_error(std::string(name) + " must have shape " + expected + ", got " + shape);
+  }
+  if (!(array.flags() & py::array::c_style) ||
+      !(array.flags() & py::detail::npy_api::NPY_ARRAY_ALIGNED_)) {
+    throw py::value_error(std::string(name) +
+                          " must be C-contiguous and aligned (numpy.ascontiguousarray)");
+  }
+}
+
+// Takes ownership of `values` without copying: the array frees them when it is collected.
+template <class T>
+py::array_t<T> to_numpy(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+  auto owner = std::make_unique<std::vector<T>>(std::move(values));
+  T* data = owner->data();
+  py::capsule capsule(owner.get(), [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  owner.release();
+  return py::array_t<T>(std::move(shape), data, std::move(capsule));
+}
+
+// A GLM matrix (column-major) as a 4x4 float32 array indexed [row, column], so that
+// `matrix @ vector` transforms a column vector as in GLM.
+py::array_t<float> to_numpy(const glm::mat4& matrix) {
+  std::vector<float> values(16);
+  for (int row = 0; row < 4; ++row) {
+    for (int column = 0; column < 4; ++column)
+      values[row * 4 + column] = matrix[column][row];
+  }
+  return to_numpy(std::move(values), {4, 4});
+}
+
+glm::mat4 to_mat4(const py::array& array, const char* name) {
+  check_array<float>(array, name, "float32", 2, 4);
+  if (array.shape(0) != 4) {
+    throw py::value_error(std::string(name) + " must have shape (4, 4), got (" +
+                          std::to_string(array.shape(0)) + ", 4)");
+  }
+  const float* values = static_cast<const float*>(array.data());
+  glm::mat4 matrix;
+  for (int row = 0; row < 4; ++row) {
+    for (int column = 0; column < 4; ++column)
+      matrix[column][row] = values[row * 4 + column];
+  }
+  return matrix;
+}
+
+// A glm::vec3 member as a read-write tuple property.
+template <class Class>
+void def_vec3(py::class_<Class>& cls, const char* field, glm::vec3 Class::*member) {
+  cls.def_property(
+      field,
+      [member](const Class& self) {
+        const glm::vec3& v = self.*member;
+        return std::array<float, 3>{v.x, v.y, v.z};
+      },
+      [member](Class& self, const std::array<float, 3>& v) {
+        self.*member = {v[0], v[1], v[2]};
+      });
+}
+
+// Copies `count` rows of `columns` floats (glm vectors) into an (count, columns) array.
+template <class Vector>
+py::array_t<float> rows_to_numpy(const std::vector<Vector>& rows, py::ssize_t columns) {
+  static_assert(sizeof(Vector) % sizeof(float) == 0);
+  std::vector<float> values(rows.size() * sizeof(Vector) / sizeof(float));
+  std::memcpy(values.data(), rows.data(), values.size() * sizeof(float));
+  return to_numpy(std::move(values), {static_cast<py::ssize_t>(rows.size()), columns});
+}
+
+void draw(Renderer& renderer, Framebuffer& target, const py::array& positions,
+          const std::optional<py::array>& varyings, const std::optional<py::array>& indices,
+          const PipelineState* pipeline) {
+  check_array<float>(positions, "positions", "float32", 2, 4);
+  tessera::DrawInput input;
+  input.positions = {static_cast<const tessera::Float4*>(positions.data()),
+                     static_cast<size_t>(positions.shape(0))};
+  if (varyings) {
+    check_array<float>(*varyings, "varyings", "float32", 2, 0);
+    input.attributes = {static_cast<const float*>(varyings->data()),
+                        static_cast<size_t>(varyings->size())};
+    input.attribute_count = static_cast<uint32_t>(varyings->shape(1));
+  }
+  if (indices) {
+    if (indices->ndim() == 2) {
+      check_array<uint32_t>(*indices, "indices", "uint32", 2, 3);
+    } else {
+      check_array<uint32_t>(*indices, "indices", "uint32", 1, 0);
+    }
+    input.indices = {static_cast<const uint32_t*>(indices->data()),
+                     static_cast<size_t>(indices->size())};
+  }
+  const PipelineState state = pipeline ? *pipeline : PipelineState{};
+  // The arrays stay referenced by this call's arguments while the GIL is released.
+  py::gil_scoped_release release;
+  renderer.draw(target, state, input);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(tessera, m) {
+  m.doc() =
+      "Tessera, a software rasterizer: draw clip-space triangles from NumPy arrays and read "
+      "the images back as NumPy arrays.";
+  m.attr("__version__") = TESSERA_VERSION_STRING;
+  m.attr("MAX_VARYINGS") = tessera::kMaxVaryings;
+  m.attr("MAX_LIGHTS") = tessera::kMaxLights;
+
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const Error& e) {
+      switch (e.code()) {
+        case ErrorCode::kInvalidArgument:
+        case ErrorCode::kInvalidInput:
+          PyErr_SetString(PyExc_ValueError, e.what());
+          return;
+        case ErrorCode::kOutOfMemory:
+          PyErr_SetString(PyExc_MemoryError, e.what());
+          return;
+        default:
+          PyErr_SetString(PyExc_RuntimeError, e.what());
+          return;
+      }
+    }
+  });
+
+  py::class_<VaryingRoles> roles(m, "Roles",
+                                 "Index of the first varying of each group the built-in shaders "
+                                 "read: color (4), normal (3), position (3).");
+  roles.def(py::init(&from_kwargs<VaryingRoles>))
+      .def_readwrite("color", &VaryingRoles::color)
+      .def_readwrite("normal", &VaryingRoles::normal)
+      .def_readwrite("position", &VaryingRoles::position);
+
+  py::class_<Light> light(m, "Light", "A light of the Phong model (tessera/shading.hpp).");
+  light.def(py::init(&from_kwargs<Light>))
+      .def_readwrite("position", &Light::position)
+      .def_readwrite("direction", &Light::direction)
+      .def_readwrite("diffuse", &Light::diffuse)
+      .def_readwrite("specular", &Light::specular)
+      .def_readwrite("c0", &Light::c0)
+      .def_readwrite("c1", &Light::c1)
+      .def_readwrite("c2", &Light::c2)
+      .def_readwrite("spot_cos_cutoff", &Light::spot_cos_cutoff)
+      .def_readwrite("spot_exponent", &Light::spot_exponent);
+  def_enum<LightKind>(light, "kind", &Light::kind, kLightKindNames);
+
+  py::class_<PhongState> phong(m, "Phong", "Per-pixel Phong material and lights.");
+  phong.def(py::init(&from_kwargs<PhongState>))
+      .def_readwrite("base_color", &PhongState::base_color)
+      .def_readwrite("ka", &PhongState::ka)
+      .def_readwrite("kd", &PhongState::kd)
+      .def_readwrite("ks", &PhongState::ks)
+      .def_readwrite("shininess", &PhongState::shininess)
+      .def_readwrite("ambient", &PhongState::ambient)
+      .def_readwrite("eye", &PhongState::eye)
+      .def_readwrite("two_sided", &PhongState::two_sided)
+      .def_property(
+          "lights",
+          [](const PhongState& self) {
+            const uint32_t count = std::min(self.light_count, tessera::kMaxLights);
+            return std::vector<Light>(self.lights.begin(), self.lights.begin() + count);
+          },
+          [](PhongState& self, const std::vector<Light>& lights) {
+            if (lights.size() > tessera::kMaxLights) {
+              throw py::value_error("phong.lights holds " + std::to_string(lights.size()) +
+                                    " lights, more than the maximum of " +
+                                    std::to_string(tessera::kMaxLights));
+            }
+            std::copy(lights.begin(), lights.end(), self.lights.begin());
+            self.light_count = static_cast<uint32_t>(lights.size());
+          },
+          "The lights (a list of up to 8 Light); assigning a list replaces them.");
+
+  py::class_<PipelineState> pipeline(m, "Pipeline",
+                                     "Everything about a draw that is not its vertex data; "
+                                     "keyword arguments set the attributes of the same names.");
+  pipeline.def(py::init(&from_kwargs<PipelineState>))
+      .def_readwrite("depth_test", &PipelineState::depth_test)
+      .def_readwrite("depth_write", &PipelineState::depth_write)
+      .def_readwrite("color_write", &PipelineState::color_write)
+      .def_readwrite("samples", &PipelineState::samples)
+      .def_readwrite("subpixel_bits", &PipelineState::subpixel_bits)
+      .def_readwrite("roles", &PipelineState::roles)
+      .def_readwrite("phong", &PipelineState::phong)
+      .def_readwrite("object_id", &PipelineState::object_id)
+      .def_property(
+          "varying_modes",
+          [](const PipelineState& self) {
+            std::vector<std::string> modes;
+            for (VaryingMode mode : self.varying_modes)
+              modes.push_back(name_of<VaryingMode>(kVaryingModeNames, mode));
+            return modes;
+          },
+          [](PipelineState& self, const std::vector<std::string>& modes) {
+            if (modes.size() > tessera::kMaxVaryings) {
+              throw py::value_error("varying_modes holds " + std::to_string(modes.size()) +
+                                    " modes, more than the maximum of " +
+                                    std::to_string(tessera::kMaxVaryings));
+            }
+            self.varying_modes.fill(VaryingMode::kDefault);
+            for (size_t i = 0; i < modes.size(); ++i)
+              self.varying_modes[i] =
+                  parse<VaryingMode>(kVaryingModeNames, "varying_modes", modes[i]);
+          },
+          "Per-varying interpolation (\"default\", \"perspective\", \"affine\", \"flat\"); a "
+          "shorter list leaves the rest \"default\".");
+  def_enum<CompareOp>(pipeline, "depth_compare", &PipelineState::depth_compare, kCompareNames);
+  def_enum<CullMode>(pipeline, "cull", &PipelineState::cull, kCullNames);
+  def_enum<FrontFace>(pipeline, "front_face", &PipelineState::front_face, kFrontFaceNames);
+  def_enum<tessera::ClipDepth>(pipeline, "clip_depth", &PipelineState::clip_depth, kClipDepthNames);
+  def_enum<Interpolation>(pipeline, "interpolation", &PipelineState::interpolation,
+                          kInterpolationNames);
+  def_enum<FragmentShader>(pipeline, "shader", &PipelineState::shader, kShaderNames);
+  def_enum<TargetOutput>(pipeline, "output", &PipelineState::output, kOutputNames);
+
+  py::class_<Framebuffer>(m, "Framebuffer",
+                          "Colour and depth of every sample of every pixel; cleared to colour 0 "
+                          "and depth 1.")
+      .def(py::init([](uint32_t width, uint32_t height, uint32_t samples, std::string_view color,
+                       std::string_view depth) {
+             tessera::FramebufferDesc desc;
+             desc.width = width;
+             desc.height = height;
+             desc.samples = samples;
+             desc.color_format = parse<ColorFormat>(kColorNames, "color", color);
+             desc.depth_format = parse<DepthFormat>(kDepthNames, "depth", depth);
+             return Framebuffer(desc);
+           }),
+           py::arg("width"), py::arg("height"), py::arg("samples") = 1, py::arg("color") = "rgba8",
+           py::arg("depth") = "float32")
+      .def_property_readonly("width", &Framebuffer::width)
+      .def_property_readonly("height", &Framebuffer::height)
+      .def_property_readonly("samples", &Framebuffer::samples)
+      .def_property_readonly("color",
+                             [](const Framebuffer& self) {
+                               return name_of<ColorFormat>(kColorNames, self.desc().color_format);
+                             })
+      .def_property_readonly("depth",
+                             [](const Framebuffer& self) {
+                               return name_of<DepthFormat>(kDepthNames, self.desc().depth_format);
+                             })
+      .def("clear_color", &Framebuffer::clear_color, py::arg("rgba"))
+      .def("clear_depth", &Framebuffer::clear_depth, py::arg("depth"))
+      .def(
+          "read_rgba8",
+          [](const Framebuffer& self) {
+            std::vector<uint8_t> pixels;
+            {
+              py::gil_scoped_release release;
+              pixels = self.read_rgba8();
+            }
+            return to_numpy(std::move(pixels), {self.height(), self.width(), 4});
+          },
+          "Resolved colour, top row first: an HxWx4 uint8 array.")
+      .def(
+          "read_rgba32f",
+          [](const Framebuffer& self) {
+            std::vector<float> pixels;
+            {
+              py::gil_scoped_release release;
+              pixels = self.read_rgba32f();
+            }
+            return to_numpy(std::move(pixels), {self.height(), self.width(), 4});
+          },
+          "Resolved colour, top row first: an HxWx4 float32 array.")
+      .def(
+          "read_color",
+          [](const Framebuffer& self) -> py::array {
+            if (self.desc().color_format == ColorFormat::kRGBA8) {
+              std::vector<uint8_t> pixels;
+              {
+                py::gil_scoped_release release;
+                pixels = self.read_rgba8();
+              }
+              return to_numpy(std::move(pixels), {self.height(), self.width(), 4});
+            }
+            std::vector<float> pixels;
+            {
+              py::gil_scoped_release release;
+              pixels = self.read_rgba32f();
+            }
+            return to_numpy(std::move(pixels), {self.height(), self.width(), 4});
+          },
+          "Resolved colour in the framebuffer's format: HxWx4 uint8 (rgba8) or float32 "
+          "(rgba32f).")
+      .def(
+          "read_depth",
+          [](const Framebuffer& self) {
+            std::vector<float> depth;
+            {
+              py::gil_scoped_release release;
+              depth = self.read_depth();
+            }
+            return to_numpy(std::move(depth), {self.height(), self.width()});
+          },
+          "Depth of sample 0 of each pixel in [0, 1], top row first: an HxW float32 array.")
+      .def(
+          "read_sample_depth",
+          [](const Framebuffer& self) {
+            std::vector<float> depth;
+            {
+              py::gil_scoped_release release;
+              depth = self.read_sample_depth();
+            }
+            return to_numpy(std::move(depth), {self.height(), self.width(), self.samples()});
+          },
+          "Every sample's depth: an HxWxS float32 array.");
+
+  py::class_<tessera::Camera> camera(
+      m, "Camera",
+      "A look-at camera with a perspective or orthographic projection (tessera/scene.hpp); "
+      "view() and projection() are 4x4 float32 matrices for column vectors.");
+  camera.def(py::init(&from_kwargs<tessera::Camera>))
+      .def_readwrite("orthographic", &tessera::Camera::orthographic)
+      .def_readwrite("fov_y_degrees", &tessera::Camera::fov_y_degrees)
+      .def_readwrite("ortho_height", &tessera::Camera::ortho_height)
+      .def_readwrite("near_plane", &tessera::Camera::near_plane)
+      .def_readwrite("far_plane", &tessera::Camera::far_plane)
+      .def_readwrite("reversed_z", &tessera::Camera::reversed_z)
+      .def("view", [](const tessera::Camera& self) { return to_numpy(self.view()); })
+      .def(
+          "projection",
+          [](const tessera::Camera& self, float aspect, std::string_view clip_depth) {
+            return to_numpy(self.projection(
+                aspect, parse<tessera::ClipDepth>(kClipDepthNames, "clip_depth", clip_depth)));
+          },
+          py::arg("aspect"), py::arg("clip_depth") = "zero_to_one");
+  def_vec3(camera, "eye", &tessera::Camera::eye);
+  def_vec3(camera, "target", &tessera::Camera::target);
+  def_vec3(camera, "up", &tessera::Camera::up);
+
+  m.def(
+      "to_clip_space",
+      [](const py::array& positions, const py::array& mvp) {
+        check_array<float>(positions, "positions", "float32", 2, 3);
+        const glm::mat4 matrix = to_mat4(mvp, "mvp");
+        std::span<const glm::vec3> points{static_cast<const glm::vec3*>(positions.data()),
+                                          static_cast<size_t>(positions.shape(0))};
+        std::vector<tessera::Float4> clip;
+        {
+          py::gil_scoped_release release;
+          clip = tessera::to_clip_space(points, matrix);
+        }
+        std::vector<float> values(clip.size() * 4);
+        std::memcpy(values.data(), clip.data(), values.size() * sizeof(float));
+        return to_numpy(std::move(values), {static_cast<py::ssize_t>(clip.size()), 4});
+      },
+      py::arg("positions"), py::arg("mvp"),
+      "Transforms (n, 3) float32 positions by a 4x4 float32 matrix to (n, 4) clip space, as the "
+      "C++ scene layer does.");
+
+  py::class_<tessera::Mesh>(m, "Mesh",
+                            "A triangle mesh; its arrays are copies: positions and normals "
+                            "(n, 3) float32, colors (n, 4) float32, indices (m, 3) uint32.")
+      .def_property_readonly(
+          "positions", [](const tessera::Mesh& self) { return rows_to_numpy(self.positions, 3); })
+      .def_property_readonly(
+          "normals", [](const tessera::Mesh& self) { return rows_to_numpy(self.normals, 3); })
+      .def_property_readonly(
+          "colors", [](const tessera::Mesh& self) { return rows_to_numpy(self.colors, 4); })
+      .def_property_readonly("indices",
+                             [](const tessera::Mesh& self) {
+                               std::vector<uint32_t> indices = self.indices;
+                               const auto rows = static_cast<py::ssize_t>(indices.size() / 3);
+                               return to_numpy(std::move(indices), {rows, 3});
+                             })
+      .def_property_readonly("triangle_count", &tessera::Mesh::triangle_count)
+      .def(
+          "bounds",
+          [](const tessera::Mesh& self) {
+            const tessera::Bounds b = tessera::mesh_bounds(self);
+            return std::pair(std::array<float, 3>{b.min.x, b.min.y, b.min.z},
+                             std::array<float, 3>{b.max.x, b.max.y, b.max.z});
+          },
+          "The mesh's axis-aligned box as ((min x, y, z), (max x, y, z)).");
+#if TESSERA_PYTHON_IO
+  m.def(
+      "load_mesh",
+      [](const std::filesystem::path& path) {
+        py::gil_scoped_release release;
+        return tessera::load_mesh(path);
+      },
+      py::arg("path"),
+      "Loads every triangle of a Wavefront OBJ, glTF 2.0 or PLY file into one Mesh (Assimp).");
+#endif
+
+  py::class_<Renderer>(m, "Renderer",
+                       "Draws triangles into framebuffers on its own threads (0: all cores). "
+                       "Images are the same bytes for any thread count.")
+      .def(py::init([](uint32_t threads, std::string_view backend) {
+             tessera::RendererOptions options;
+             options.threads = threads;
+             options.backend = parse<Backend>(kBackendNames, "backend", backend);
+             return Renderer(options);
+           }),
+           py::arg("threads") = 0, py::arg("backend") = "fast")
+      .def_property_readonly("threads", &Renderer::threads)
+      .def_property_readonly(
+          "backend",
+          [](const Renderer& self) { return name_of<Backend>(kBackendNames, self.backend()); })
+      .def_property_readonly("simd_target", &Renderer::simd_target)
+      .def("draw", &draw, py::arg("framebuffer"), py::arg("positions"),
+           py::arg("varyings") = py::none(), py::arg("indices") = py::none(),
+           py::arg("pipeline") = py::none(),
+           "Draws a triangle list: positions an (n, 4) float32 array in clip space, varyings an "
+           "(n, k) float32 array, indices a uint32 array of shape (3m,) or (m, 3), all "
+           "C-contiguous and read in place. The GIL is released during the draw.");
+}
