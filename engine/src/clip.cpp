@@ -116,9 +116,12 @@ PlaneSet clip_planes(GuardBand guard_band) {
 
 }  // namespace
 
-bool inside_clip_planes(double x, double y, double z, double w, GuardBand guard_band) {
-  for (const Plane& plane : clip_planes(guard_band)) {
-    if (!(plane.distance(x, y, z, w) >= 0.0)) return false;
+bool inside_clip_planes(std::span<const std::array<double, 4>> points, GuardBand guard_band) {
+  const PlaneSet planes = clip_planes(guard_band);
+  for (const std::array<double, 4>& p : points) {
+    for (const Plane& plane : planes) {
+      if (!(plane.distance(p[0], p[1], p[2], p[3]) >= 0.0)) return false;
+    }
   }
   return true;
 }

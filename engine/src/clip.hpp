@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 
 #include "tessera/types.hpp"
 
@@ -59,9 +60,9 @@ struct GuardBand {
 ClipVertex weighted_sum(const ClipVertex& p, double s, const ClipVertex& q, double t,
                         uint32_t attribute_count);
 
-// Whether the point (x, y, z, w) lies inside every plane clip_triangle clips against (a
+// Whether every point (x, y, z, w) lies inside every plane clip_triangle clips against (a
 // triangle whose three vertices do is left uncut, with clipped = false).
-bool inside_clip_planes(double x, double y, double z, double w, GuardBand guard_band);
+bool inside_clip_planes(std::span<const std::array<double, 4>> points, GuardBand guard_band);
 
 // Clips triangle `in` (3 vertices) into `out` (a convex polygon, same winding, to be drawn
 // as the fan out[0], out[i], out[i+1]). Only the first `attribute_count` attributes are

@@ -310,12 +310,9 @@ void setup_shaded_triangle(const SetupContext& ctx, const shade::Layout& layout,
   // Each vertex's position (OpenGL's z as setup_triangle maps it) and interpolant values.
   std::array<std::array<double, 4>, 3> clip;
   std::array<std::array<double, shade::kMaxInterpolants>, 3> value;
-  bool inside = true;
   for (int k = 0; k < 3; ++k) {
     const Float4& p = *positions[k];
     clip[k] = {p.x, p.y, gl_depth ? 0.5 * (double{p.z} + p.w) : p.z, p.w};
-    inside = inside &&
-             inside_clip_planes(clip[k][0], clip[k][1], clip[k][2], clip[k][3], ctx.guard_band);
     for (uint32_t j = 0; j < layout.count; ++j) {
       const shade::Interpolant& in = layout.values[j];
       switch (in.source) {
@@ -336,7 +333,7 @@ void setup_shaded_triangle(const SetupContext& ctx, const shade::Layout& layout,
   }
   // The flat interpolants take the provoking vertex's values, clipped or not.
   const ShadedPlanes shaded{layout, value[0], planes};
-  if (inside) {
+  if (inside_clip_planes(clip, ctx.guard_band)) {
     // No plane cuts it (nearly every triangle): the clipper would return it as it is.
     std::array<Snapped, 3> s;
     for (int k = 0; k < 3; ++k) {
