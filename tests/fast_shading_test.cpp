@@ -14,69 +14,16 @@
 
 #include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
+#include "tests/shading_scene.hpp"
 
 namespace tessera {
 namespace {
 
-constexpr uint32_t kWidth = 100, kHeight = 76;  // two tiles across and down, both partial
-constexpr float kClear = -7.0f;                 // no shaded value is this
-
-// Ten varyings per vertex at the default roles: colour 0..3, normal 4..6, eye-space position
-// 7..9.
-struct Mesh {
-  std::vector<Float4> positions;
-  std::vector<float> varyings;
-  DrawInput input() const { return {positions, varyings, 10, {}}; }
-};
-
-// A perspective projection (60 degrees vertically, near 0.5, far 20) of eye-space points.
-Float4 project(double x, double y, double z) {
-  const double f = 1.0 / std::tan(M_PI / 6.0), aspect = double{kWidth} / kHeight;
-  const double near = 0.5, far = 20.0;
-  return {static_cast<float>(f / aspect * x), static_cast<float>(f * y),
-          static_cast<float>((far + near) / (near - far) * z + 2 * far * near / (near - far)),
-          static_cast<float>(-z)};
-}
-
-void add_vertex(Mesh& m, double x, double y, double z, const std::array<double, 3>& normal,
-                const std::array<double, 4>& colour) {
-  m.positions.push_back(project(x, y, z));
-  for (double c : colour)
-    m.varyings.push_back(static_cast<float>(c));
-  for (double n : normal)
-    m.varyings.push_back(static_cast<float>(n));
-  for (double p : {x, y, z})
-    m.varyings.push_back(static_cast<float>(p));
-}
-
-// A wavy sheet of n x n cells over [x0, x0 + size] x [y0, y0 + size] around depth z0, its
-// normals tilting with the waves, and its colours varying across it.
-void add_sheet(Mesh& m, int n, double x0, double y0, double size, double z0) {
-  const auto vertex = [&](int i, int j) {
-    const double x = x0 + size * i / n, y = y0 + size * j / n;
-    const double z = z0 - 0.4 * std::sin(2.5 * x) * std::cos(1.7 * y) - 0.2 * x;
-    add_vertex(m, x, y, z, {0.4 * std::cos(2.5 * x), -0.3 * std::sin(1.7 * y), 1.0},
-               {double(i) / n, double(j) / n, 0.5 + 0.4 * std::sin(x * y), 0.6 + 0.3 * i / n});
-  };
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1);
-      vertex(i, j), vertex(i + 1, j + 1), vertex(i, j + 1);
-    }
-  }
-}
-
-Mesh test_mesh() {
-  Mesh m;
-  add_sheet(m, 12, -2.0, -1.6, 3.4, -4.0);  // medium triangles over most of the view
-  add_sheet(m, 40, -0.6, -0.3, 0.9, -3.2);  // tiny ones in front, partly hiding it
-  add_sheet(m, 2, -1.0, -1.0, 2.2, -6.0);   // large ones behind
-  // A triangle reaching behind the eye: the near plane cuts it.
-  add_vertex(m, -0.8, -0.9, -1.5, {0.1, 0.2, 1.0}, {1.0, 0.2, 0.1, 0.9});
-  add_vertex(m, 0.9, -0.7, 1.0, {-0.2, 0.1, 1.0}, {0.1, 1.0, 0.2, 0.8});
-  add_vertex(m, 0.2, -0.2, -2.5, {0.0, -0.3, 1.0}, {0.2, 0.1, 1.0, 1.0});
-  return m;
-}
+using shading_scene::kClear;
+using shading_scene::kHeight;
+using shading_scene::kWidth;
+using shading_scene::Mesh;
+using shading_scene::test_mesh;
 
 struct Case {
   std::string name;

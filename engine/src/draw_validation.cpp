@@ -246,7 +246,7 @@ void validate_shading(const Framebuffer& target, const PipelineState& pipeline,
     check_enum(pipeline.varying_modes[i], VaryingMode::kFlat,
                ("varying_modes[" + std::to_string(i) + "]").c_str());
   }
-  check_enum(pipeline.shader, FragmentShader::kPhong, "shader");
+  check_enum(pipeline.shader, FragmentShader::kUser, "shader");
   check_enum(pipeline.output, TargetOutput::kObjectId, "output");
   const uint32_t count = input.attribute_count;
   const VaryingRoles& roles = pipeline.roles;
@@ -259,6 +259,10 @@ void validate_shading(const Framebuffer& target, const PipelineState& pipeline,
     check_group(roles.normal, 3, count, "normal", "shader kPhong");
     check_group(roles.position, 3, count, "position", "shader kPhong");
     validate_phong(pipeline.phong);
+  }
+  if (pipeline.output == TargetOutput::kColor && pipeline.shader == FragmentShader::kUser &&
+      pipeline.color_write && !pipeline.fragment_function) {
+    fail(ErrorCode::kInvalidArgument, "shader kUser needs a fragment_function, which is empty");
   }
   // IDs are written as floats: exact below 2^24, and only a float target keeps them.
   constexpr uint64_t kExactIds = uint64_t{1} << 24;

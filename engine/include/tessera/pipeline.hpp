@@ -62,8 +62,9 @@ struct PipelineState {
   FragmentShader shader = FragmentShader::kGouraud;
   TargetOutput output = TargetOutput::kColor;
   VaryingRoles roles;
-  PhongState phong;        // FragmentShader::kPhong
-  uint32_t object_id = 0;  // TargetOutput::kObjectId
+  PhongState phong;                    // FragmentShader::kPhong
+  FragmentFunction fragment_function;  // FragmentShader::kUser
+  uint32_t object_id = 0;              // TargetOutput::kObjectId
 };
 
 }  // namespace tessera

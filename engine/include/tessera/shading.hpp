@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 
 #include "tessera/types.hpp"
 
@@ -27,6 +28,7 @@ enum class VaryingMode : uint8_t {
 enum class FragmentShader : uint8_t {
   kGouraud,  // the colour varyings (VaryingRoles::color), RGBA; missing ones (0, 0, 0, 1)
   kPhong,    // per-pixel Phong lighting (PhongState) of the interpolated normal and position
+  kUser,     // PipelineState::fragment_function, on batches of fragments (FragmentBatch)
 };
 
 // What the colour target receives. kColor is the fragment shader's colour; the others are the
@@ -90,5 +92,56 @@ struct PhongState {
   uint32_t light_count = 0;  // 0..kMaxLights
   std::array<Light, kMaxLights> lights{};
 };
+
+// User fragment shaders (FragmentShader::kUser; docs/WRITING_A_SHADER.md).
+//
+// The engine hands the shader batches of fragments in 2x2 quads of pixels and reads back one
+// RGBA colour per fragment. Arrays are structure of arrays with kFragmentBatchStride floats
+// between one component's array and the next, so a shader loops over i < count per component.
+inline constexpr uint32_t kFragmentBatchStride = 64;
+
+struct FragmentBatch {
+  // Fragments in the batch: 4 per quad (a multiple of 4, at most kFragmentBatchStride). Quad
+  // k is fragments 4k..4k+3: its top-left, top-right, bottom-left and bottom-right pixels.
+  uint32_t count = 0;
+  uint32_t varying_count = 0;  // the draw's attribute_count
+  // Window coordinates of each fragment's pixel centre (pixel x + 0.5, y + 0.5; y down).
+  const float* x = nullptr;
+  const float* y = nullptr;
+  // The fragment's covered samples that passed the depth test, bit s for sample s. 0 marks a
+  // helper fragment: a pixel of the quad the triangle does not draw, shaded only so that its
+  // neighbours' values exist; its outputs are not written.
+  const uint32_t* sample_mask = nullptr;
+  // The index of the fragment's triangle in the draw (clipped pieces keep their triangle's).
+  const uint32_t* primitive_id = nullptr;
+  // Varying v at the pixel centre: varyings[v * kFragmentBatchStride + i], interpolated as
+  // the varying's mode says (where the centre lies beyond the triangle's horizon, at the
+  // pixel's first drawn sample; a helper fragment there takes its quad's first drawn
+  // fragment's values).
+  const float* varyings = nullptr;
+  // The screen derivatives of varying v per pixel step in x and in y, the same for the four
+  // fragments of a quad: the exact derivative of the interpolated varying at the quad's centre
+  // (the point its four pixel centres surround), 0 for a flat varying. Indexed as varyings.
+  const float* ddx = nullptr;
+  const float* ddy = nullptr;
+};
+
+struct FragmentOutput {
+  // RGBA of fragment i: color[c * kFragmentBatchStride + i] for channel c = 0..3, written as
+  // the built-in shaders' colours are (clamped to [0, 1] and rounded in an RGBA8 target; NaN
+  // becomes 0 there). Undefined on entry: the shader writes every live fragment's.
+  float* color = nullptr;
+  // Set discard[i] to nonzero to drop fragment i: neither its colour nor its depth is written.
+  // All zero on entry.
+  uint8_t* discard = nullptr;
+};
+
+// The engine calls the function from several threads at once, for batches of different
+// screen tiles, in no particular order across tiles (within a pixel, in draw order). So it
+// must be safe to call concurrently, and each fragment's outputs must depend only on that
+// fragment's inputs (its own position, varyings, derivatives, IDs and mask), so that images
+// do not depend on the thread count or on how fragments are batched. It must not throw: an
+// exception leaves the framebuffer partly drawn and is passed on to the draw's caller.
+using FragmentFunction = std::function<void(const FragmentBatch&, const FragmentOutput&)>;
 
 }  // namespace tessera

@@ -29,6 +29,7 @@
 #include "binning/tile_grid.hpp"
 #include "engine/src/fast/block_kernel.hpp"
 #include "engine/src/fast/pixel_record.hpp"
+#include "engine/src/fast/user_fragments.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
 
@@ -487,6 +488,15 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
   const CompareOp compare = tc.compare;
   const float depth_scale = tc.depth_scale;
   bool wrote = false;
+  // A user shader's block (shade::Shader::kUser): each pixel's passing samples, and with depth
+  // writes each sample's depth, kept for its back end (user_fragments.hpp), which writes them
+  // after the shader, for the fragments it keeps.
+  constexpr bool kUser = kShader == shade::Shader::kUser;
+  constexpr bool kUserDepth = kUser && kDepth == DepthMode::kTestWrite;
+  alignas(64) uint32_t user_mask[kUser ? 64 : 1];
+  alignas(64) float user_z[kUserDepth ? (kMulti ? 16 : 1) * 64 : 1];
+  bool user_any = false;
+  if constexpr (kUser) std::fill_n(user_mask, 64, 0u);
   for (size_t i = first; i < last; i += lanes) {
     auto inside = all_lanes(di);
     if (clipped_block) {
@@ -590,7 +600,9 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
           const auto stored = hn::Load(df, plane);
           pass = hn::And(pass, depth_passes(df, kMulti ? compare : tc.compare, z, stored));
         }
-        if constexpr (kDepth == DepthMode::kTestWrite) {
+        if constexpr (kUserDepth) {
+          hn::Store(z, df, user_z + s * 64 + i);
+        } else if constexpr (kDepth == DepthMode::kTestWrite) {
           if constexpr (!kOffsets || !kMulti) {
             // Samples are stored unconditionally: whether any lane passes varies from lane
             // group to lane group and sample to sample, a branch on it is often mispredicted,
@@ -616,7 +628,17 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       }
     }
 
-    if constexpr (kColor != ColorMode::kOff && kShader != shade::Shader::kGouraud) {
+    if constexpr (kUser) {
+      const auto any = pass_one;
+      if (hn::AllFalse(du, any)) continue;
+      if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
+      if constexpr (kMulti) {
+        hn::Store(sample_bits(du, samples, passed), du, user_mask + i);
+      } else {
+        hn::Store(hn::IfThenElseZero(any, hn::Set(du, 1u)), du, user_mask + i);
+      }
+      user_any = true;
+    } else if constexpr (kColor != ColorMode::kOff && kShader != shade::Shader::kGouraud) {
       const auto any = pass_one;
       if (hn::AllFalse(du, any)) continue;
       if constexpr (kCount) st.shaded += static_cast<uint32_t>(hn::CountTrue(du, any));
@@ -696,7 +718,11 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       }
     }
   }
-  if constexpr (kDepth == DepthMode::kTestWrite) {
+  if constexpr (kUser) {
+    if (user_any) {
+      shade_user_block(tc, t, st.planes, bx, by, block, user_mask, kUserDepth ? user_z : nullptr);
+    }
+  } else if constexpr (kDepth == DepthMode::kTestWrite) {
     // The block's depth changed: its Hi-Z bounds are recomputed when next needed.
     if (wrote) mark_hiz_dirty(tc, block);
   }
@@ -1948,6 +1974,19 @@ void FillDepthKernels(KernelTable& table) {
 // block_kernel_shader_*.cpp instantiates it for its shader; block_kernel.cpp calls them.
 template <shade::Shader kShader>
 void FillShaderKernels(KernelTable& table) {
+  if constexpr (kShader == shade::Shader::kUser) {
+    // A user shader's colour is written by its back end, for either format: one instance of
+    // each other state serves both.
+    constexpr int kRGBA8 = static_cast<int>(ColorMode::kRGBA8);
+    constexpr int kRGBA32F = static_cast<int>(ColorMode::kRGBA32F);
+    auto& rows = table.shaded_kernels[static_cast<int>(kShader)];
+    fill_shaded<kShader, DepthMode::kOff, ColorMode::kRGBA8>(table);
+    fill_shaded<kShader, DepthMode::kTest, ColorMode::kRGBA8>(table);
+    fill_shaded<kShader, DepthMode::kTestWrite, ColorMode::kRGBA8>(table);
+    for (auto& depth : rows)
+      std::copy(&depth[kRGBA8][0][0], &depth[kRGBA8][0][0] + 4, &depth[kRGBA32F][0][0]);
+    return;
+  }
   fill_shaded<kShader, DepthMode::kOff, ColorMode::kRGBA8>(table);
   fill_shaded<kShader, DepthMode::kOff, ColorMode::kRGBA32F>(table);
   fill_shaded<kShader, DepthMode::kTest, ColorMode::kRGBA8>(table);

@@ -2,10 +2,11 @@
 // block_kernel-inl.h (depth mode x colour mode x single or multisample x counting or not), the
 // 12 pixel-record and 12 sample-record kernels (depth mode x no colour or RGBA8 x counting or
 // not), and 24 triangle kernels for each other shader (depth mode x RGBA8 or RGBA32F x single
-// or multisample x counting or not). Each depth mode's Gouraud instances compile in their own
-// source (block_kernel_depth_*.cpp), and each shader's (block_kernel_shader_*.cpp), for the
-// same targets as this file, so the kernels build in parallel; this file only gathers them,
-// per target, into one table and picks the table for the target a renderer runs on.
+// or multisample x counting or not; a user shader's 12 serve both colour formats). Each depth
+// mode's Gouraud instances compile in their own source (block_kernel_depth_*.cpp), and each
+// shader's (block_kernel_shader_*.cpp), for the same targets as this file, so the kernels build in
+// parallel; this file only gathers them, per target, into one table and picks the table for the
+// target a renderer runs on.
 #include "engine/src/fast/block_kernel.hpp"
 
 #undef HWY_TARGET_INCLUDE
@@ -28,6 +29,7 @@ void FillShaderKernels(KernelTable& table);
 extern template void FillShaderKernels<shade::Shader::kInterpolated>(KernelTable& table);
 extern template void FillShaderKernels<shade::Shader::kNormalized>(KernelTable& table);
 extern template void FillShaderKernels<shade::Shader::kPhong>(KernelTable& table);
+extern template void FillShaderKernels<shade::Shader::kUser>(KernelTable& table);
 
 const KernelTable* GetKernelTable() {
   static const KernelTable table = [] {
@@ -38,6 +40,7 @@ const KernelTable* GetKernelTable() {
     FillShaderKernels<shade::Shader::kInterpolated>(t);
     FillShaderKernels<shade::Shader::kNormalized>(t);
     FillShaderKernels<shade::Shader::kPhong>(t);
+    FillShaderKernels<shade::Shader::kUser>(t);
     return t;
   }();
   return &table;

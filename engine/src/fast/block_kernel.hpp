@@ -15,6 +15,10 @@
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
 
+namespace tessera::shade {
+class UserBatch;
+}  // namespace tessera::shade
+
 namespace tessera::fast {
 
 // 32-bit stepping bound. Inside a block the kernel evaluates only edges that cross the block,
@@ -69,6 +73,8 @@ struct TileContext {
   // A shaded draw's layout (shade/layout.hpp): its setups' planes are the floats from
   // planes + 3 * layout->count * (setup index). Null for a Gouraud draw.
   const shade::Layout* layout = nullptr;
+  // A user shader's draw (shade::Shader::kUser): the tile task's batch buffers.
+  shade::UserBatch* user_batch = nullptr;
 };
 
 // A triangle kernel draws setup `t`, whose planes (a shaded draw's, else null) are `planes`.

@@ -4,7 +4,10 @@
 #include "engine/src/fast/tile_raster.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <type_traits>
+
+#include "engine/src/shade/user_batch.hpp"
 
 namespace tessera::fast {
 
@@ -172,12 +175,18 @@ void raster_tile(const TileContext& draw, TriangleKernel kernel, PixelKernel pix
   const int32_t bx1 = std::min<int32_t>(bx0 + size, fb.desc.width) - 1;
   const int32_t by1 = std::min<int32_t>(by0 + size, fb.desc.height) - 1;
   constexpr int32_t kStorage = binning::kTileSize;
+  // A user fragment function's batch buffers: the task's own.
+  std::optional<shade::UserBatch> user_batch;
+  if (draw.layout != nullptr && draw.layout->shader == shade::Shader::kUser) {
+    user_batch.emplace(draw.layout->count - 1);
+  }
   // The storage tiles under the bin tile: one, or 2x2 for 128-pixel bin tiles.
   for (int32_t sy = by0 / kStorage * kStorage; sy <= by1; sy += kStorage) {
     for (int32_t sx = bx0 / kStorage * kStorage; sx <= bx1; sx += kStorage) {
       const uint32_t storage_tile =
           fb.grid.tile_of(static_cast<uint32_t>(sx), static_cast<uint32_t>(sy));
       TileContext tc = draw;
+      if (user_batch) tc.user_batch = &*user_batch;
       tc.tile_x0 = sx;
       tc.tile_y0 = sy;
       tc.x0 = std::max(bx0, sx);

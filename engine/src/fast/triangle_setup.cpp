@@ -5,6 +5,7 @@
 #include "engine/src/fast/triangle_setup.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "engine/src/fast/block_kernel.hpp"
@@ -195,6 +196,11 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
     float* plane_out = shaded->planes.data() + at;
     for (uint32_t j = 0; j < layout.count; ++j, plane_out += 3) {
       const VaryingMode mode = layout.values[j].mode;
+      if (layout.values[j].source == shade::Source::kPrimitiveBits) {
+        plane_out[0] = std::bit_cast<float>(static_cast<uint32_t>(shaded->flat[j]));
+        plane_out[1] = plane_out[2] = 0.0f;
+        continue;
+      }
       if (mode == VaryingMode::kFlat) {
         plane_out[0] = static_cast<float>(shaded->flat[j]);
         plane_out[1] = plane_out[2] = 0.0f;
@@ -326,6 +332,7 @@ void setup_shaded_triangle(const SetupContext& ctx, const shade::Layout& layout,
           value[k][j] = in.index == static_cast<uint32_t>(k) ? 1.0 : 0.0;
           break;
         case shade::Source::kPrimitive:
+        case shade::Source::kPrimitiveBits:
           value[k][j] = primitive;
           break;
       }

@@ -12,13 +12,18 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <utility>
+#include <vector>
 
 #include "engine/src/clip.hpp"
 #include "engine/src/reference/reference_shade.hpp"
 #include "engine/src/sample_positions.hpp"
+#include "engine/src/shade/user_batch.hpp"
 #include "engine/src/shading_state.hpp"
 
 namespace tessera::reference {
@@ -76,6 +81,7 @@ struct FragmentInputs {
   uint32_t values = 0;                             // varyings plus the carriers
   std::array<VaryingMode, kMaxClipValues> mode{};  // kPerspective, kAffine or kFlat
   bool needs_q = false;                            // a perspective value or the eye depth is read
+  bool user = false;  // a user fragment function shades the draw (FragmentShader::kUser)
 };
 
 FragmentInputs fragment_inputs(const PipelineState& pipeline, uint32_t attribute_count) {
@@ -88,6 +94,8 @@ FragmentInputs fragment_inputs(const PipelineState& pipeline, uint32_t attribute
     f.needs_q = f.needs_q || f.mode[i] == VaryingMode::kPerspective;
   }
   f.needs_q = f.needs_q || pipeline.output == TargetOutput::kEyeDepth;
+  f.user = pipeline.color_write && pipeline.output == TargetOutput::kColor &&
+           pipeline.shader == FragmentShader::kUser;
   return f;
 }
 
@@ -122,6 +130,51 @@ bool interpolate(const std::array<WindowVertex, 3>& v, int64_t area, int64_t px,
     for (int i = 0; i < 3; ++i)
       a += weight[i] * v[i].clip->attributes[c];
     out[c] = a;
+  }
+  return true;
+}
+
+// The derivatives per pixel step in x and y of the values at the fixed-point point (px, py),
+// exactly, from the barycentrics' gradients: for a perspective-correct value a/q (a and q
+// linear on screen), (a_x - (a/q) q_x) / q; for an affine one its gradient; 0 for a flat one.
+// `value` holds the values there (interpolate's). Returns false where 1/w is not positive.
+bool derivatives(const std::array<WindowVertex, 3>& v, int64_t area, uint32_t bits, int64_t px,
+                 int64_t py, const FragmentInputs& in,
+                 const std::array<double, kMaxClipValues>& value,
+                 std::array<double, kMaxClipValues>& ddx, std::array<double, kMaxClipValues>& ddy) {
+  const double a = static_cast<double>(area);
+  const double unit = std::ldexp(1.0, static_cast<int>(bits));  // fixed-point units per pixel
+  double b[3], bx[3], by[3];
+  for (int i = 0; i < 3; ++i) {
+    const WindowVertex& from = v[(i + 1) % 3];
+    const WindowVertex& to = v[(i + 2) % 3];
+    b[i] = static_cast<double>(edge(from, to, px, py)) / a;
+    bx[i] = -static_cast<double>(to.y - from.y) * unit / a;
+    by[i] = static_cast<double>(to.x - from.x) * unit / a;
+  }
+  double q = 1.0, qx = 0.0, qy = 0.0;
+  if (in.needs_q) {
+    q = qx = qy = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      q += b[i] * v[i].inv_w;
+      qx += bx[i] * v[i].inv_w;
+      qy += by[i] * v[i].inv_w;
+    }
+    if (!(q > 0.0)) return false;
+  }
+  for (uint32_t c = 0; c < in.values; ++c) {
+    ddx[c] = ddy[c] = 0.0;
+    if (in.mode[c] == VaryingMode::kFlat) continue;
+    const bool perspective = in.mode[c] == VaryingMode::kPerspective;
+    for (int i = 0; i < 3; ++i) {
+      const double scale = perspective ? v[i].inv_w : 1.0;
+      ddx[c] += bx[i] * scale * v[i].clip->attributes[c];
+      ddy[c] += by[i] * scale * v[i].clip->attributes[c];
+    }
+    if (perspective) {
+      ddx[c] = (ddx[c] - value[c] * qx) / q;
+      ddy[c] = (ddy[c] - value[c] * qy) / q;
+    }
   }
   return true;
 }
@@ -182,12 +235,109 @@ void write_color(detail::FramebufferStorage& fb, size_t index, const std::array<
   }
 }
 
+// A pixel a user fragment function shades: its samples that passed the depth test and, with
+// depth writes, their depths, written after the function for the fragments it keeps.
+struct UserFragment {
+  int64_t px = 0, py = 0;
+  uint32_t mask = 0;
+  std::array<float, 16> depth{};
+};
+
+// Runs the batch and writes the fragments it keeps.
+void flush_user_batch(detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                      shade::UserBatch& batch, const std::vector<const UserFragment*>& slots) {
+  if (batch.empty()) return;
+  batch.run(pipeline.fragment_function);
+  const bool write_depth = pipeline.depth_test && pipeline.depth_write;
+  for (uint32_t f = 0; f < batch.size(); ++f) {
+    const UserFragment* fragment = slots[f];
+    if (fragment == nullptr || batch.discarded(f)) continue;
+    const std::array<float, 4> color = {batch.color(0, f), batch.color(1, f), batch.color(2, f),
+                                        batch.color(3, f)};
+    for (uint32_t s = 0; s < fb.desc.samples; ++s) {
+      if (!(fragment->mask & (1u << s))) continue;
+      const size_t index = fb.sample_index(static_cast<uint32_t>(fragment->px),
+                                           static_cast<uint32_t>(fragment->py), s);
+      if (write_depth) fb.depth[index] = fragment->depth[s];
+      write_color(fb, index, color);
+    }
+  }
+  batch.clear();
+}
+
+// A user fragment function over one triangle's fragments (rasterize_triangle's), in 2x2 quads
+// of pixels in row-major order of the quads: each fragment's values at its pixel centre (or, as
+// for the built-in shaders, at its first passing sample where the centre lies beyond the
+// horizon; a helper fragment there copies its quad's first drawn one), each quad's derivatives
+// at its centre.
+void shade_user_fragments(detail::FramebufferStorage& fb, const PipelineState& pipeline,
+                          const std::array<WindowVertex, 3>& v, int64_t area,
+                          const FragmentInputs& inputs,
+                          const std::array<double, kMaxClipValues>& flat, uint32_t primitive,
+                          const std::vector<UserFragment>& fragments, shade::UserBatch& batch) {
+  const uint32_t bits = pipeline.subpixel_bits;
+  const int shift = static_cast<int>(bits) - 4;
+  const auto pattern = sample_pattern(fb.desc.samples);
+  std::map<std::pair<int64_t, int64_t>, std::array<const UserFragment*, 4>> quads;
+  for (const UserFragment& f : fragments)
+    quads[{f.py >> 1, f.px >> 1}][(f.py & 1) * 2 + (f.px & 1)] = &f;
+  std::vector<const UserFragment*> slots;
+  for (const auto& [key, quad] : quads) {
+    if (batch.full()) {
+      flush_user_batch(fb, pipeline, batch, slots);
+      slots.clear();
+    }
+    const int64_t qx = key.second * 2, qy = key.first * 2;
+    uint32_t masks[4];
+    int live = -1;
+    for (int k = 0; k < 4; ++k) {
+      masks[k] = quad[k] ? quad[k]->mask : 0u;
+      if (live < 0 && masks[k] != 0) live = k;
+    }
+    const uint32_t first =
+        batch.add_quad(static_cast<uint32_t>(qx), static_cast<uint32_t>(qy), primitive, masks);
+    std::array<std::array<double, kMaxClipValues>, 4> values;
+    std::array<int64_t, 4> at_x{}, at_y{};  // where each fragment was evaluated
+    std::array<bool, 4> evaluated{};
+    double w = 1.0;
+    const auto evaluate = [&](int k) {
+      const int64_t px = qx + (k & 1), py = qy + (k >> 1);
+      at_x[k] = (px * 16 + 8) << shift;
+      at_y[k] = (py * 16 + 8) << shift;
+      evaluated[k] = interpolate(v, area, at_x[k], at_y[k], inputs, flat, values[k], w);
+      if (evaluated[k] || masks[k] == 0) return;
+      const auto& o = pattern[std::countr_zero(masks[k])];
+      at_x[k] = (px * 16 + 8 + o.dx) << shift;
+      at_y[k] = (py * 16 + 8 + o.dy) << shift;
+      evaluated[k] = interpolate(v, area, at_x[k], at_y[k], inputs, flat, values[k], w);
+    };
+    evaluate(live);
+    for (int k = 0; k < 4; ++k) {
+      if (k != live) evaluate(k);
+      if (!evaluated[k]) values[k] = values[live];
+      for (uint32_t j = 0; j < inputs.varyings; ++j)
+        batch.set_value(j, first + static_cast<uint32_t>(k), static_cast<float>(values[k][j]));
+      slots.push_back(quad[k] && masks[k] != 0 ? quad[k] : nullptr);
+    }
+    std::array<double, kMaxClipValues> centre, ddx, ddy;
+    const int64_t cx = (qx * 16 + 16) << shift, cy = (qy * 16 + 16) << shift;
+    if (!interpolate(v, area, cx, cy, inputs, flat, centre, w) ||
+        !derivatives(v, area, bits, cx, cy, inputs, centre, ddx, ddy)) {
+      derivatives(v, area, bits, at_x[live], at_y[live], inputs, values[live], ddx, ddy);
+    }
+    for (uint32_t j = 0; j < inputs.varyings; ++j) {
+      batch.set_derivatives(j, first, static_cast<float>(ddx[j]), static_cast<float>(ddy[j]));
+    }
+  }
+  flush_user_batch(fb, pipeline, batch, slots);
+}
+
 // One triangle (a piece of draw triangle `primitive`, whose first vertex's values are
-// `flat`).
+// `flat`); `batch` for a user fragment function's draw.
 void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                         std::array<WindowVertex, 3> v, const FragmentInputs& inputs,
                         const std::array<double, kMaxClipValues>& flat, uint32_t primitive,
-                        Counters& counters) {
+                        Counters& counters, shade::UserBatch* batch) {
   int64_t area = edge(v[0], v[1], v[2].x, v[2].y);
   if (area == 0) {
     ++counters.triangles_culled;
@@ -225,10 +375,12 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
   const int64_t y1 =
       std::min<int64_t>(fb.desc.height - 1, pixel_of(std::max({v[0].y, v[1].y, v[2].y})) + 1);
 
+  std::vector<UserFragment> user_fragments;
   for (int64_t py = y0; py <= y1; ++py) {
     for (int64_t px = x0; px <= x1; ++px) {
       std::array<bool, 16> passed{};
       int first_passed = -1;
+      UserFragment user{px, py};
       for (uint32_t s = 0; s < samples; ++s) {
         // Sample position in fixed point: pixel corner + 8/16 (centre) + the sample offset.
         const int64_t sx = (px * 16 + 8 + pattern[s].dx) << shift;
@@ -253,13 +405,25 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
             fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s);
         if (pipeline.depth_test) {
           if (!detail::depth_passes(pipeline.depth_compare, depth, fb.depth[index])) continue;
-          if (pipeline.depth_write) fb.depth[index] = depth;
+          if (pipeline.depth_write) {
+            // A user function's fragments are written after it, unless it discards them.
+            if (inputs.user) {
+              user.depth[s] = depth;
+            } else {
+              fb.depth[index] = depth;
+            }
+          }
         }
+        user.mask |= 1u << s;
         ++counters.samples_passed;
         passed[s] = true;
         if (first_passed < 0) first_passed = static_cast<int>(s);
       }
       if (first_passed < 0 || !pipeline.color_write) continue;
+      if (inputs.user) {
+        user_fragments.push_back(user);
+        continue;
+      }
 
       // Shade once per pixel, at the pixel centre (at the first passing sample when the centre
       // lies beyond the triangle's horizon: inside the triangle 1/w is positive), and store to
@@ -282,6 +446,9 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
       }
     }
   }
+  if (!user_fragments.empty()) {
+    shade_user_fragments(fb, pipeline, v, area, inputs, flat, primitive, user_fragments, *batch);
+  }
 }
 
 }  // namespace
@@ -293,6 +460,8 @@ void draw(detail::FramebufferStorage& fb, const PipelineState& pipeline, const D
   const uint32_t attribute_count = input.attribute_count;
   const FragmentInputs inputs = fragment_inputs(pipeline, attribute_count);
   const GuardBand guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
+  std::optional<shade::UserBatch> batch;
+  if (inputs.user) batch.emplace(attribute_count);
 
   for (size_t t = 0; t < triangles; ++t) {
     ++counters.triangles_submitted;
@@ -361,7 +530,7 @@ void draw(detail::FramebufferStorage& fb, const PipelineState& pipeline, const D
     // two pieces, and the fill rule gives each of their samples to exactly one piece.
     for (int i = 1; i + 1 < polygon.count; ++i) {
       rasterize_triangle(fb, pipeline, {window[0], window[i], window[i + 1]}, inputs, flat,
-                         primitive, counters);
+                         primitive, counters, batch ? &*batch : nullptr);
     }
   }
 }

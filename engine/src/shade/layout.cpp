@@ -69,6 +69,13 @@ Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count) {
     case TargetOutput::kColor:
       break;
   }
+  if (pipeline.shader == FragmentShader::kUser) {
+    layout.shader = Shader::kUser;
+    add_varyings(0, attribute_count);
+    add(Source::kPrimitiveBits, 0, VaryingMode::kFlat);
+    layout.function = &pipeline.fragment_function;
+    return layout;
+  }
   if (pipeline.shader == FragmentShader::kPhong) {
     layout.shader = Shader::kPhong;
     add_varyings(pipeline.roles.normal, 3);

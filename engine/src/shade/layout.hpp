@@ -20,15 +20,19 @@ enum class Shader : uint8_t {
   kInterpolated,  // each RGBA channel an interpolant or a constant
   kNormalized,    // interpolants 0..2 normalized, as RGB (A = 1): TargetOutput::kNormal
   kPhong,         // per-pixel Phong (PhongState) of the normal and position interpolants
+  kUser,          // the pipeline's FragmentFunction on batches (user_batch.hpp): every varying,
+                  // then the primitive index
 };
-inline constexpr int kShaders = 4;
+inline constexpr int kShaders = 5;
 
 // What a vertex carries for one interpolant.
 enum class Source : uint8_t {
-  kVarying,      // varying `index` of the draw
-  kClipW,        // its clip-space w: the eye depth, perspective-correct
-  kBarycentric,  // 1 for vertex `index` of the draw's triangle, 0 for the others
-  kPrimitive,    // the triangle's index in the draw (flat)
+  kVarying,        // varying `index` of the draw
+  kClipW,          // its clip-space w: the eye depth, perspective-correct
+  kBarycentric,    // 1 for vertex `index` of the draw's triangle, 0 for the others
+  kPrimitive,      // the triangle's index in the draw (flat)
+  kPrimitiveBits,  // the same index, its 32 bits stored as the plane's float (flat): exact
+                   // beyond 2^24
 };
 
 struct Interpolant {
@@ -37,8 +41,8 @@ struct Interpolant {
   VaryingMode mode = VaryingMode::kPerspective;  // never kDefault
 };
 
-// Phong needs 3 + 3 + 4 values; every output fewer.
-inline constexpr uint32_t kMaxInterpolants = 10;
+// A user shader reads every varying and the primitive index; the built-in ones at most 10.
+inline constexpr uint32_t kMaxInterpolants = kMaxVaryings + 1;
 
 // A light as the Phong policy reads it: directions normalized and negated where the model
 // needs them, in double and then rounded to float, as the reference normalizes them.
@@ -70,6 +74,8 @@ struct Layout {
   bool has_color = false;
   PhongState phong{};  // the draw's material (phong.lights unused: see lights)
   std::array<PreparedLight, kMaxLights> lights{};
+  // kUser: the pipeline's function (valid for the draw).
+  const FragmentFunction* function = nullptr;
 };
 
 // The layout of a draw with `attribute_count` varyings under `pipeline`'s shading state:

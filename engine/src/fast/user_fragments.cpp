@@ -1,0 +1,154 @@
+// The user fragment shaders' back end in the fast engine (user_fragments.hpp). Scalar float
+// code compiled once, not per SIMD target: the varyings are the same bits on every target. A
+// value is its plane at the pixel, base + (gx x + gy y), divided by the 1/w plane there when
+// perspective-correct: the operations, in the order, of the built-in shaders
+// (shade/shade-inl.h).
+#include "engine/src/fast/user_fragments.hpp"
+
+#include <bit>
+#include <limits>
+
+#include "binning/tile_grid.hpp"
+#include "engine/src/sample_positions.hpp"
+#include "engine/src/shade/user_batch.hpp"
+
+namespace tessera::fast {
+
+namespace {
+
+constexpr size_t kSamplePlane = binning::kTilePixels;
+
+// A triangle's 1/w plane at pixel offset (x, y) from its plane origin (1 where it is flat).
+struct QPlane {
+  float q0, q_dx, q_dy;
+  bool flat;
+  float at(float x, float y) const { return flat ? 1.0f : q0 + (q_dx * x + q_dy * y); }
+};
+
+}  // namespace
+
+void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float* planes,
+                      int32_t bx, int32_t by, size_t block, const uint32_t* mask, const float* z) {
+  const shade::Layout& layout = *tc.layout;
+  shade::UserBatch& batch = *tc.user_batch;
+  const uint32_t varyings = layout.count - 1;  // then the primitive index's bits
+  const uint32_t primitive = std::bit_cast<uint32_t>(planes[3 * varyings]);
+  const QPlane qp{t.q0, t.flat_q ? 0.0f : t.q_dx, t.flat_q ? 0.0f : t.q_dy, t.flat_q};
+  // Offsets of the block's first pixel centre from the plane origin (pixel (x0, y0)'s centre).
+  const float ox = static_cast<float>(bx * 8 - t.x0), oy = static_cast<float>(by * 8 - t.y0);
+  const auto value_at = [&](uint32_t j, float x, float y, float inv_q) {
+    const float* plane = planes + 3 * j;
+    const float v = plane[0] + (plane[1] * x + plane[2] * y);
+    return layout.values[j].mode == VaryingMode::kPerspective ? v * inv_q : v;
+  };
+
+  // A block holds 16 quads of 4 pixels: one batch (UserBatch::kCapacity fragments).
+  static_assert(shade::UserBatch::kCapacity >= 64);
+  batch.clear();
+  uint8_t pixel[64];  // each fragment's pixel in the block
+  for (uint32_t qy = 0; qy < 4; ++qy) {
+    for (uint32_t qx = 0; qx < 4; ++qx) {
+      uint32_t masks[4];
+      uint32_t index[4];
+      int live = -1;  // the quad's first fragment with samples
+      for (uint32_t k = 0; k < 4; ++k) {
+        index[k] = (2 * qy + (k >> 1)) * 8 + 2 * qx + (k & 1);
+        masks[k] = mask[index[k]];
+        if (live < 0 && masks[k] != 0) live = static_cast<int>(k);
+      }
+      if (live < 0) continue;
+      const uint32_t first =
+          batch.add_quad(static_cast<uint32_t>(bx * 8) + 2 * qx,
+                         static_cast<uint32_t>(by * 8) + 2 * qy, primitive, masks);
+      // Where each fragment is evaluated: its pixel centre, or beyond the triangle's horizon
+      // (1/w not positive) its first drawn sample; a helper there copies the live fragment.
+      float px[4], py[4], q[4];
+      bool copy[4] = {false, false, false, false};
+      for (uint32_t k = 0; k < 4; ++k) {
+        pixel[first + k] = static_cast<uint8_t>(index[k]);
+        px[k] = static_cast<float>(2 * qx + (k & 1)) + ox;
+        py[k] = static_cast<float>(2 * qy + (k >> 1)) + oy;
+        q[k] = qp.at(px[k], py[k]);
+        if (q[k] > 0.0f) continue;
+        if (masks[k] == 0) {
+          copy[k] = true;
+          continue;
+        }
+        const uint32_t s = static_cast<uint32_t>(std::countr_zero(masks[k]));
+        px[k] += tc.sample_fx[s];
+        py[k] += tc.sample_fy[s];
+        q[k] = qp.at(px[k], py[k]);
+      }
+      const uint32_t l = static_cast<uint32_t>(live);
+      for (uint32_t k = 0; k < 4; ++k) {
+        const uint32_t from = copy[k] ? l : k;
+        const float inv_q = 1.0f / q[from];
+        for (uint32_t j = 0; j < varyings; ++j)
+          batch.set_value(j, first + k, value_at(j, px[from], py[from], inv_q));
+      }
+      // Derivatives at the quad's centre, or where that lies beyond the horizon at the live
+      // fragment's point: d(a / q)/dx = (a_x - (a / q) q_x) / q for a perspective-correct
+      // value, the plane's gradient for an affine one, 0 for a flat one.
+      float cx = static_cast<float>(2 * qx) + ox + 0.5f,
+            cy = static_cast<float>(2 * qy) + oy + 0.5f;
+      float qc = qp.at(cx, cy);
+      if (!(qc > 0.0f)) {
+        cx = px[l];
+        cy = py[l];
+        qc = q[l];
+      }
+      const float inv_qc = 1.0f / qc;
+      for (uint32_t j = 0; j < varyings; ++j) {
+        const float* plane = planes + 3 * j;
+        switch (layout.values[j].mode) {
+          case VaryingMode::kPerspective: {
+            const float v = value_at(j, cx, cy, inv_qc);
+            batch.set_derivatives(j, first, (plane[1] - v * qp.q_dx) * inv_qc,
+                                  (plane[2] - v * qp.q_dy) * inv_qc);
+            break;
+          }
+          case VaryingMode::kAffine:
+            batch.set_derivatives(j, first, plane[1], plane[2]);
+            break;
+          default:
+            batch.set_derivatives(j, first, 0.0f, 0.0f);
+            break;
+        }
+      }
+    }
+  }
+  if (batch.empty()) return;
+  batch.run(*layout.function);
+
+  bool wrote = false;
+  for (uint32_t f = 0; f < batch.size(); ++f) {
+    const uint32_t m = batch.mask(f);
+    if (m == 0 || batch.discarded(f)) continue;
+    const size_t i = pixel[f];
+    uint8_t packed[4];
+    for (uint32_t c = 0; c < 4; ++c)
+      packed[c] = to_unorm8(batch.color(c, f));
+    for (uint32_t bits = m; bits != 0; bits &= bits - 1) {
+      const uint32_t s = static_cast<uint32_t>(std::countr_zero(bits));
+      const size_t at = block * 64 + s * kSamplePlane + i;
+      if (z != nullptr) {
+        tc.depth[at] = z[s * 64 + i];
+        wrote = true;
+      }
+      for (uint32_t c = 0; c < 4; ++c) {
+        if (tc.rgba8 != nullptr) {
+          tc.rgba8[at * 4 + c] = packed[c];
+        } else {
+          tc.rgba32f[at * 4 + c] = batch.color(c, f);
+        }
+      }
+    }
+  }
+  if (wrote) {
+    // The block's depth changed: its Hi-Z bounds are recomputed when next needed.
+    tc.hiz_min[block] = std::numeric_limits<float>::infinity();
+    tc.hiz_max[block] = -std::numeric_limits<float>::infinity();
+  }
+}
+
+}  // namespace tessera::fast
