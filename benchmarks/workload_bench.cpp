@@ -82,7 +82,8 @@ void set_frame_counters(benchmark::State& state, double median_ms, double triang
 }
 
 // shading "gouraud" draws the capture's colours; "phong" its Phong variant
-// (benchmarks/phong_workload.hpp).
+// (benchmarks/phong_workload.hpp); "user" the capture's colours through a user fragment
+// shader that copies them (FragmentShader::kUser).
 void BM_Workload(benchmark::State& state, std::string name, std::string shading,
                  tessera::SimdTarget target, std::string target_name, bool best, uint32_t threads,
                  uint32_t samples, bool color) {
@@ -104,6 +105,18 @@ void BM_Workload(benchmark::State& state, std::string name, std::string shading,
   tessera::PipelineState pipeline =
       phong ? tessera::bench::phong_pipeline() : tessera::capture_pipeline();
   pipeline.color_write = color;
+  if (shading == "user") {
+    // A user fragment shader that does what the built-in Gouraud does: its colour varyings.
+    pipeline.shader = tessera::FragmentShader::kUser;
+    pipeline.fragment_function = [](const tessera::FragmentBatch& b,
+                                    const tessera::FragmentOutput& out) {
+      constexpr uint32_t kStride = tessera::kFragmentBatchStride;
+      for (uint32_t c = 0; c < 4; ++c) {
+        for (uint32_t i = 0; i < b.count; ++i)
+          out.color[c * kStride + i] = b.varyings[c * kStride + i];
+      }
+    };
+  }
   const std::vector<float> varyings =
       phong ? tessera::bench::phong_varyings(*capture) : std::vector<float>{};
   tessera::DrawInput input;
@@ -270,16 +283,18 @@ void register_all() {
   }
   // Gouraud at one and four samples, colour and depth only; Phong (colour) at one sample.
   for (const char* w : workloads) {
-    for (const char* shading : {"gouraud", "phong"}) {
+    for (const char* shading : {"gouraud", "phong", "user"}) {
       const bool phong = std::string(shading) == "phong";
+      const bool user = std::string(shading) == "user";
+      const std::string suffix = phong ? "/phong" : user ? "/user" : "";
       for (uint32_t samples : {1u, 4u}) {
         if (phong && samples != 1) continue;
         for (uint32_t threads : {1u, 2u}) {
           for (const auto& [t, best] : available) {
             for (bool color : {true, false}) {
-              if (phong && !color) continue;
-              const std::string label = std::string(w) + (phong ? "/phong" : "") + "/fast/" +
-                                        t.name + "/threads:" + std::to_string(threads) +
+              if ((phong || user) && !color) continue;
+              const std::string label = std::string(w) + suffix + "/fast/" + t.name +
+                                        "/threads:" + std::to_string(threads) +
                                         "/samples:" + std::to_string(samples) +
                                         (color ? "" : "/depth_only");
               benchmark::RegisterBenchmark(label.c_str(), BM_Workload, w, shading, t.target, t.name,
@@ -289,7 +304,9 @@ void register_all() {
             }
           }
 #ifdef TESSERA_LLVMPIPE_BENCH
-          // After Tessera's cases of the same workload, sample and thread count, for the ratio.
+          // After Tessera's cases of the same workload, sample and thread count, for the ratio
+          // (a user shader's colour is the Gouraud draw's: no llvmpipe case of its own).
+          if (user) continue;
           const std::string label = std::string(w) + (phong ? "/phong" : "") +
                                     "/llvmpipe/threads:" + std::to_string(threads) +
                                     "/samples:" + std::to_string(samples);

@@ -327,6 +327,47 @@ static void check_shading(void) {
   tessera_renderer_destroy(renderer);
 }
 
+/* ---- A user fragment shader --------------------------------------------------------------- */
+
+/* The colour varyings times *(const float*)user_data; fragments left of x = 16 discarded.
+ * Every batch is whole quads (a batch whose count is not a multiple of 4 turns alpha to 0). */
+static void scaled_colour(const tessera_fragment_batch* batch, const tessera_fragment_output* out,
+                          void* user_data) {
+  const float scale = *(const float*)user_data;
+  const uint32_t stride = TESSERA_FRAGMENT_BATCH_STRIDE;
+  for (uint32_t i = 0; i < batch->count; ++i) {
+    for (uint32_t c = 0; c < 4; ++c)
+      out->color[c * stride + i] = batch->varyings[c * stride + i] * scale;
+    if (batch->count % 4 != 0) out->color[3 * stride + i] = 0;
+    out->discard[i] = batch->x[i] < 16.0f;
+  }
+}
+
+static void check_user_shader(tessera_backend backend) {
+  tessera_renderer* renderer = make_renderer(backend, 2);
+  tessera_framebuffer* fb = make_framebuffer(1, TESSERA_COLOR_RGBA32F, TESSERA_DEPTH_FLOAT32);
+  static float rgba[kSize * kSize * 4];
+  static float depth[kSize * kSize];
+  const float scale = 0.5f;
+  tessera_pipeline_state pipeline;
+  OK(tessera_pipeline_state_init(&pipeline));
+  pipeline.shader = TESSERA_SHADER_USER;
+  EXPECT_ERROR(draw_full_quad(renderer, fb, &pipeline), TESSERA_ERROR_INVALID_ARGUMENT,
+               "tessera_draw_triangles", "fragment_function");
+  pipeline.fragment_function = scaled_colour;
+  pipeline.fragment_user_data = (void*)&scale;
+  OK(draw_full_quad(renderer, fb, &pipeline));
+  OK(tessera_framebuffer_read_rgba32f(fb, rgba, kSize * kSize * 4));
+  OK(tessera_framebuffer_read_depth(fb, depth, kSize * kSize));
+  const float* kept = rgba + (32 * kSize + 32) * 4;
+  const float* dropped = rgba + (32 * kSize + 8) * 4;
+  CHECK(kept[0] == 0.25f && kept[1] == 0.5f && kept[2] == 0.125f && kept[3] == 0.5f);
+  CHECK(dropped[0] == 0.0f && dropped[3] == 0.0f);
+  CHECK(depth[32 * kSize + 32] == 0.5f && depth[32 * kSize + 8] == 1.0f);
+  tessera_framebuffer_destroy(fb);
+  tessera_renderer_destroy(renderer);
+}
+
 /* ---- Allocator callbacks ----------------------------------------------------------------- */
 
 typedef struct counting_allocator {
@@ -547,12 +588,12 @@ static void check_errors(void) {
   EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input), bad_arg,
                "tessera_draw_triangles", "pipeline cull has the invalid value 2147483646");
   OK(tessera_pipeline_state_init(&pipeline));
-  pipeline.shader = (tessera_fragment_shader)2;
+  pipeline.shader = (tessera_fragment_shader)3;
   EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input), bad_arg,
-               "tessera_draw_triangles", "pipeline shader has the invalid value 2");
-  pipeline.shader = (tessera_fragment_shader)258; /* would wrap to 2 in the C++ uint8_t */
+               "tessera_draw_triangles", "pipeline shader has the invalid value 3");
+  pipeline.shader = (tessera_fragment_shader)259; /* would wrap to 3 in the C++ uint8_t */
   EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input), bad_arg,
-               "tessera_draw_triangles", "pipeline shader has the invalid value 258");
+               "tessera_draw_triangles", "pipeline shader has the invalid value 259");
   OK(tessera_pipeline_state_init(&pipeline));
   pipeline.varying_modes[5] = (tessera_varying_mode)9;
   EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input), bad_arg,
@@ -637,6 +678,8 @@ int main(void) {
   check_msaa(TESSERA_BACKEND_FAST);
   check_msaa(TESSERA_BACKEND_REFERENCE);
   check_shading();
+  check_user_shader(TESSERA_BACKEND_FAST);
+  check_user_shader(TESSERA_BACKEND_REFERENCE);
   check_allocator();
   check_errors();
   printf("c_api_test: %d checks, %d failed\n", checks, failures);

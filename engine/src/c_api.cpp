@@ -85,7 +85,9 @@ static_assert(same(TESSERA_VARYING_DEFAULT, tessera::VaryingMode::kDefault) &&
               same(TESSERA_VARYING_AFFINE, tessera::VaryingMode::kAffine) &&
               same(TESSERA_VARYING_FLAT, tessera::VaryingMode::kFlat));
 static_assert(same(TESSERA_SHADER_GOURAUD, tessera::FragmentShader::kGouraud) &&
-              same(TESSERA_SHADER_PHONG, tessera::FragmentShader::kPhong));
+              same(TESSERA_SHADER_PHONG, tessera::FragmentShader::kPhong) &&
+              same(TESSERA_SHADER_USER, tessera::FragmentShader::kUser));
+static_assert(TESSERA_FRAGMENT_BATCH_STRIDE == tessera::kFragmentBatchStride);
 static_assert(same(TESSERA_OUTPUT_COLOR, tessera::TargetOutput::kColor) &&
               same(TESSERA_OUTPUT_EYE_DEPTH, tessera::TargetOutput::kEyeDepth) &&
               same(TESSERA_OUTPUT_NORMAL, tessera::TargetOutput::kNormal) &&
@@ -257,6 +259,16 @@ tessera::PipelineState to_cpp(const tessera_pipeline_state& c) {
     to.spot_exponent = from.spot_exponent;
   }
   p.object_id = c.object_id;
+  if (c.fragment_function != nullptr) {
+    p.fragment_function = [function = c.fragment_function, user_data = c.fragment_user_data](
+                              const tessera::FragmentBatch& b, const tessera::FragmentOutput& o) {
+      const tessera_fragment_batch batch{b.count,    b.varying_count, b.x,
+                                         b.y,        b.sample_mask,   b.primitive_id,
+                                         b.varyings, b.ddx,           b.ddy};
+      const tessera_fragment_output output{o.color, o.discard};
+      function(&batch, &output, user_data);
+    };
+  }
   return p;
 }
 

@@ -231,8 +231,37 @@ typedef enum tessera_varying_mode {
 typedef enum tessera_fragment_shader {
   TESSERA_SHADER_GOURAUD = 0, /* the colour varyings, RGBA */
   TESSERA_SHADER_PHONG = 1,   /* per-pixel Phong lighting (tessera_phong_state) */
+  TESSERA_SHADER_USER = 2,    /* tessera_pipeline_state.fragment_function */
   TESSERA_FRAGMENT_SHADER_MAX_ENUM = 0x7FFFFFFF
 } tessera_fragment_shader;
+
+/* User fragment shaders (tessera::FragmentBatch, tessera::FragmentOutput; the rules are in
+ * docs/WRITING_A_SHADER.md): a batch of up to TESSERA_FRAGMENT_BATCH_STRIDE fragments in 2x2
+ * quads, one array per component, TESSERA_FRAGMENT_BATCH_STRIDE values apart: varying v of
+ * fragment i is varyings[v * TESSERA_FRAGMENT_BATCH_STRIDE + i]. */
+#define TESSERA_FRAGMENT_BATCH_STRIDE 64
+
+typedef struct tessera_fragment_batch {
+  uint32_t count;         /* fragments, 4 per quad */
+  uint32_t varying_count; /* the draw's attribute_count */
+  const float* x;         /* window coordinates of the pixel centres (y down) */
+  const float* y;
+  const uint32_t* sample_mask;  /* samples the fragment writes; 0: a helper fragment */
+  const uint32_t* primitive_id; /* the triangle's index in the draw */
+  const float* varyings;
+  const float* ddx; /* per quad: d varying / dx at the quad's centre (indexed as varyings) */
+  const float* ddy;
+} tessera_fragment_batch;
+
+typedef struct tessera_fragment_output {
+  float* color;     /* RGBA of fragment i: color[c * TESSERA_FRAGMENT_BATCH_STRIDE + i] */
+  uint8_t* discard; /* nonzero drops the fragment; all zero on entry */
+} tessera_fragment_output;
+
+/* Called from several threads at once, for batches of different screen tiles: it must be safe
+ * to call concurrently, and each fragment's outputs must depend only on its own inputs. */
+typedef void (*tessera_fragment_function)(const tessera_fragment_batch* batch,
+                                          const tessera_fragment_output* output, void* user_data);
 
 /* What the colour target receives (tessera::TargetOutput). PRIMITIVE_ID and OBJECT_ID need an
  * RGBA32F framebuffer. */
@@ -307,6 +336,9 @@ typedef struct tessera_pipeline_state {
   tessera_varying_roles roles;
   tessera_phong_state phong;
   uint32_t object_id; /* TESSERA_OUTPUT_OBJECT_ID, below 2^24 */
+  /* TESSERA_SHADER_USER: the function, and the pointer passed to every call of it. */
+  tessera_fragment_function fragment_function;
+  void* fragment_user_data;
 } tessera_pipeline_state;
 
 TESSERA_API tessera_result tessera_pipeline_state_init(tessera_pipeline_state* state);
