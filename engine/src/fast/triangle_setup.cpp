@@ -56,9 +56,13 @@ Snapped snap(double x, double y, double z, double w, const SetupContext& ctx) {
 
 // Sets up a snapped triangle: with `shaded`, a shaded draw's (its planes appended beside the
 // setup), else a Gouraud draw's, whose setup holds the colour planes.
-void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList& out,
+void setup_snapped(const SetupContext& ctx, const std::array<Snapped, 3>& in, SetupList& out,
                    Counters& counters, const ShadedPlanes* shaded = nullptr) {
-  int64_t area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
+  // The vertices by reference (each carries up to kMaxInterpolants values: copies would cost
+  // more than the setup of a small triangle), in the order the setup takes them.
+  std::array<const Snapped*, 3> v = {&in[0], &in[1], &in[2]};
+  int64_t area =
+      (v[1]->x - v[0]->x) * (v[2]->y - v[0]->y) - (v[1]->y - v[0]->y) * (v[2]->x - v[0]->x);
   if (area == 0) {
     ++counters.triangles_culled;
     return;
@@ -78,10 +82,10 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   const int bits = static_cast<int>(ctx.subpixel_bits);
   const int shift = bits - 4;
   TriangleSetup t;
-  const int64_t lo_x = std::min({v[0].x, v[1].x, v[2].x}),
-                hi_x = std::max({v[0].x, v[1].x, v[2].x});
-  const int64_t lo_y = std::min({v[0].y, v[1].y, v[2].y}),
-                hi_y = std::max({v[0].y, v[1].y, v[2].y});
+  const int64_t lo_x = std::min({v[0]->x, v[1]->x, v[2]->x}),
+                hi_x = std::max({v[0]->x, v[1]->x, v[2]->x});
+  const int64_t lo_y = std::min({v[0]->y, v[1]->y, v[2]->y}),
+                hi_y = std::max({v[0]->y, v[1]->y, v[2]->y});
   if (hi_x < 0 || hi_y < 0 || lo_x >= int64_t{ctx.width} << bits ||
       lo_y >= int64_t{ctx.height} << bits) {  // inside the guard band but off screen
     ++counters.triangles_culled;
@@ -112,8 +116,8 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   double weight0[3], wdx[3], wdy[3];  // barycentrics at the origin and per pixel
   int64_t max_step = 0, max_delta = 0;
   for (int k = 0; k < 3; ++k) {
-    const Snapped& from = v[(k + 1) % 3];
-    const Snapped& to = v[(k + 2) % 3];
+    const Snapped& from = *v[(k + 1) % 3];
+    const Snapped& to = *v[(k + 2) % 3];
     const int64_t dx = to.x - from.x, dy = to.y - from.y;
     // Top-left rule (clockwise on screen, y down): a top edge is horizontal running to +x, a
     // left edge runs upwards. Samples exactly on other edges are outside: bias c by -1.
@@ -170,17 +174,17 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
     gx = static_cast<float>(wdx[0] * v0 + wdx[1] * v1 + wdx[2] * v2);
     gy = static_cast<float>(wdy[0] * v0 + wdy[1] * v1 + wdy[2] * v2);
   };
-  plane(v[0].z, v[1].z, v[2].z, t.z0, t.z_dx, t.z_dy);
-  t.z_min = static_cast<float>(std::clamp(std::min({v[0].z, v[1].z, v[2].z}), 0.0, 1.0));
-  t.z_max = static_cast<float>(std::clamp(std::max({v[0].z, v[1].z, v[2].z}), 0.0, 1.0));
+  plane(v[0]->z, v[1]->z, v[2]->z, t.z0, t.z_dx, t.z_dy);
+  t.z_min = static_cast<float>(std::clamp(std::min({v[0]->z, v[1]->z, v[2]->z}), 0.0, 1.0));
+  t.z_max = static_cast<float>(std::clamp(std::max({v[0]->z, v[1]->z, v[2]->z}), 0.0, 1.0));
 
   double q[3] = {1.0, 1.0, 1.0};
   const bool needs_q = shaded ? shaded->layout.needs_q : p.interpolation != Interpolation::kAffine;
-  t.flat_q = !needs_q || (v[0].inv_w == v[1].inv_w && v[1].inv_w == v[2].inv_w);
+  t.flat_q = !needs_q || (v[0]->inv_w == v[1]->inv_w && v[1]->inv_w == v[2]->inv_w);
   if (!t.flat_q) {
-    const double q_max = std::max({v[0].inv_w, v[1].inv_w, v[2].inv_w});
+    const double q_max = std::max({v[0]->inv_w, v[1]->inv_w, v[2]->inv_w});
     for (int k = 0; k < 3; ++k)
-      q[k] = v[k].inv_w / q_max;
+      q[k] = v[k]->inv_w / q_max;
   }
   double at0;
   plane(q[0], q[1], q[2], at0, t.q_dx, t.q_dy);
@@ -207,7 +211,7 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
         continue;
       }
       const double* w = mode == VaryingMode::kPerspective ? q : nullptr;
-      const auto scaled = [&](int k) { return (w ? w[k] : 1.0) * v[k].value[j]; };
+      const auto scaled = [&](int k) { return (w ? w[k] : 1.0) * v[k]->value[j]; };
       plane(scaled(0), scaled(1), scaled(2), at0, plane_out[1], plane_out[2]);
       plane_out[0] = static_cast<float>(at0);
     }
@@ -215,7 +219,7 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
     return;
   }
   for (int c = 0; c < 4; ++c) {
-    plane(q[0] * v[0].value[c], q[1] * v[1].value[c], q[2] * v[2].value[c], at0, t.qa_dx[c],
+    plane(q[0] * v[0]->value[c], q[1] * v[1]->value[c], q[2] * v[2]->value[c], at0, t.qa_dx[c],
           t.qa_dy[c]);
     t.qa0[c] = static_cast<float>(at0);
   }
@@ -223,7 +227,7 @@ void setup_snapped(const SetupContext& ctx, std::array<Snapped, 3> v, SetupList&
   float gradient = 0.0f;
   for (int c = 0; c < 4; ++c) {
     for (int k = 0; k < 3; ++k)
-      unit = unit && v[k].value[c] >= 0.0 && v[k].value[c] <= 1.0;
+      unit = unit && v[k]->value[c] >= 0.0 && v[k]->value[c] <= 1.0;
     gradient = std::max({gradient, std::abs(t.qa_dx[c]), std::abs(t.qa_dy[c])});
   }
   const float reach = static_cast<float>((t.x1 - t.x0) + (t.y1 - t.y0) + 15);
