@@ -1,13 +1,15 @@
 // The scene of the shaded-draw tests (fast_shading_test.cpp, user_shader_test.cpp): a
 // perspective mesh with small, medium, large and clipped triangles under a depth test, ten
-// varyings per vertex.
+// varyings per vertex, and the draw that renders it on either backend and reads it back.
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 
 namespace tessera::shading_scene {
@@ -70,6 +72,51 @@ inline Mesh test_mesh() {
   add_vertex(m, 0.9, -0.7, 1.0, {-0.2, 0.1, 1.0}, {0.1, 1.0, 0.2, 0.8});
   add_vertex(m, 0.2, -0.2, -2.5, {0.0, -0.3, 1.0}, {0.2, 0.1, 1.0, 1.0});
   return m;
+}
+
+// A SIMD target and a thread count for the fast engine.
+struct Target {
+  SimdTarget simd;
+  uint32_t threads;
+};
+
+// The SIMD targets this CPU runs, each at 1, 2 and 3 threads.
+inline std::vector<Target> fast_targets() {
+  std::vector<Target> out;
+  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
+                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
+    if (!simd::is_available(t)) continue;
+    for (uint32_t threads : {1u, 2u, 3u})
+      out.push_back({t, threads});
+  }
+  return out;
+}
+
+// A drawn mesh read back: the resolved colour (in the target's format) and every sample's depth.
+struct Image {
+  std::vector<float> rgba32f;
+  std::vector<uint8_t> rgba8;
+  std::vector<float> depth;
+};
+
+inline Image render(const Mesh& mesh, const PipelineState& pipeline, ColorFormat format,
+                    uint32_t samples, Backend backend, Target target = {SimdTarget::kAuto, 1}) {
+  RendererOptions options;
+  options.backend = backend;
+  options.simd = target.simd;
+  options.threads = target.threads;
+  Renderer renderer(options);
+  Framebuffer fb({kWidth, kHeight, samples, format});
+  fb.clear_color({kClear, kClear, kClear, kClear});
+  renderer.draw(fb, pipeline, mesh.input());
+  Image image;
+  if (format == ColorFormat::kRGBA8) {
+    image.rgba8 = fb.read_rgba8();
+  } else {
+    image.rgba32f = fb.read_rgba32f();
+  }
+  image.depth = fb.read_sample_depth();
+  return image;
 }
 
 }  // namespace tessera::shading_scene

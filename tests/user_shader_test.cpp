@@ -24,55 +24,16 @@
 namespace tessera {
 namespace {
 
+using shading_scene::Image;
 using shading_scene::kClear;
 using shading_scene::kHeight;
 using shading_scene::kWidth;
 using shading_scene::Mesh;
+using shading_scene::render;
+using shading_scene::Target;
 using shading_scene::test_mesh;
 
 constexpr uint32_t kStride = kFragmentBatchStride;
-
-struct Target {
-  SimdTarget simd;
-  uint32_t threads;
-};
-
-std::vector<Target> fast_targets() {
-  std::vector<Target> out;
-  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
-                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
-    if (!simd::is_available(t)) continue;
-    for (uint32_t threads : {1u, 2u, 3u})
-      out.push_back({t, threads});
-  }
-  return out;
-}
-
-struct Image {
-  std::vector<float> rgba32f;
-  std::vector<uint8_t> rgba8;
-  std::vector<float> depth;
-};
-
-Image render(const Mesh& mesh, const PipelineState& pipeline, ColorFormat format, uint32_t samples,
-             Backend backend, Target target = {SimdTarget::kAuto, 1}) {
-  RendererOptions options;
-  options.backend = backend;
-  options.simd = target.simd;
-  options.threads = target.threads;
-  Renderer renderer(options);
-  Framebuffer fb({kWidth, kHeight, samples, format});
-  fb.clear_color({kClear, kClear, kClear, kClear});
-  renderer.draw(fb, pipeline, mesh.input());
-  Image image;
-  if (format == ColorFormat::kRGBA8) {
-    image.rgba8 = fb.read_rgba8();
-  } else {
-    image.rgba32f = fb.read_rgba32f();
-  }
-  image.depth = fb.read_sample_depth();
-  return image;
-}
 
 // Writes four of the fragment's inputs, chosen by `channel`, as its colour.
 PipelineState user_pipeline(std::array<int, 4> channel) {
@@ -108,7 +69,7 @@ void expect_same_depth(const std::vector<float>& want, const std::vector<float>&
 void expect_matches_reference(const std::string& what, const PipelineState& pipeline,
                               double absolute, double relative) {
   const Mesh mesh = test_mesh();
-  const std::vector<Target> targets = fast_targets();
+  const std::vector<Target> targets = shading_scene::fast_targets();
   ASSERT_FALSE(targets.empty());
   for (ColorFormat format : {ColorFormat::kRGBA32F, ColorFormat::kRGBA8}) {
     for (uint32_t samples : {1u, 4u}) {
