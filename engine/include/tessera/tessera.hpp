@@ -12,6 +12,7 @@
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
 #include "tessera/shading.hpp"
+#include "tessera/texture.hpp"
 #include "tessera/types.hpp"
 #include "tessera/version.hpp"
 #include "tessera/vertex.hpp"

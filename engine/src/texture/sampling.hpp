@@ -1,0 +1,126 @@
+// The sampling rules of tessera/texture.hpp written once, for a number type T: float for the
+// engine's sampler (sampler.cpp), double for the reference's oracle
+// (reference/reference_sampler.cpp). Wrap modes act on integer texel indices (OpenGL 4.6 table
+// 8.20), so both precisions pick texels by the same rules and differ only in the positions and
+// weights they compute.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "engine/src/texture/texture_storage.hpp"
+
+namespace tessera::texture {
+
+// Texel index i on an axis of n texels under `wrap`; -1 for the border.
+inline int64_t wrap_index(int64_t i, int64_t n, Wrap wrap) {
+  switch (wrap) {
+    case Wrap::kRepeat: {
+      const int64_t m = i % n;
+      return m < 0 ? m + n : m;
+    }
+    case Wrap::kClampToEdge:
+      return std::clamp<int64_t>(i, 0, n - 1);
+    case Wrap::kMirroredRepeat: {
+      int64_t m = i % (2 * n);
+      if (m < 0) m += 2 * n;
+      return m < n ? m : 2 * n - 1 - m;
+    }
+    case Wrap::kClampToBorder:
+      return i < 0 || i >= n ? -1 : i;
+  }
+  return 0;
+}
+
+// floor(x) as an integer, x clamped to +-2^30 texels first; NaN counts as 0.
+template <class T>
+int64_t floor_index(T x) {
+  constexpr T kLimit = T(1 << 30);
+  if (!(x == x)) return 0;
+  return static_cast<int64_t>(std::floor(std::clamp(x, -kLimit, kLimit)));
+}
+
+template <class T>
+std::array<T, 4> fetch(const Texture::Storage& s, const Sampler& sampler, uint32_t level, int64_t i,
+                       int64_t j) {
+  const auto& l = s.levels[level];
+  const int64_t x = wrap_index(i, l.width, sampler.wrap_u);
+  const int64_t y = wrap_index(j, l.height, sampler.wrap_v);
+  if (x < 0 || y < 0) {
+    return {T(sampler.border_color[0]), T(sampler.border_color[1]), T(sampler.border_color[2]),
+            T(sampler.border_color[3])};
+  }
+  return decode<T>(s.desc.format, s.at(level, static_cast<uint32_t>(x), static_cast<uint32_t>(y)));
+}
+
+// One level, nearest or linear, at (u, v) in [0, 1] texture space.
+template <class T>
+std::array<T, 4> sample_level(const Texture::Storage& s, const Sampler& sampler, uint32_t level,
+                              Filter filter, T u, T v) {
+  const auto& l = s.levels[level];
+  const T x = (u == u ? u : T(0)) * T(l.width), y = (v == v ? v : T(0)) * T(l.height);
+  if (filter == Filter::kNearest)
+    return fetch<T>(s, sampler, level, floor_index(x), floor_index(y));
+  const T xs = x - T(0.5), ys = y - T(0.5);
+  const int64_t i0 = floor_index(xs), j0 = floor_index(ys);
+  // The fractions, from positions clamped as floor_index clamps them.
+  constexpr T kLimit = T(1 << 30);
+  const T a = std::clamp(xs, -kLimit, kLimit) - T(i0), b = std::clamp(ys, -kLimit, kLimit) - T(j0);
+  const auto t00 = fetch<T>(s, sampler, level, i0, j0),
+             t10 = fetch<T>(s, sampler, level, i0 + 1, j0);
+  const auto t01 = fetch<T>(s, sampler, level, i0, j0 + 1);
+  const auto t11 = fetch<T>(s, sampler, level, i0 + 1, j0 + 1);
+  std::array<T, 4> out;
+  for (int c = 0; c < 4; ++c) {
+    const T top = t00[c] + a * (t10[c] - t00[c]);
+    const T bottom = t01[c] + a * (t11[c] - t01[c]);
+    out[c] = top + b * (bottom - top);
+  }
+  return out;
+}
+
+template <class T>
+T lod(const Texture::Storage& s, const Sampler& sampler, T du_dx, T dv_dx, T du_dy, T dv_dy) {
+  const T w = T(s.desc.width), h = T(s.desc.height);
+  const T x = std::sqrt(du_dx * w * (du_dx * w) + dv_dx * h * (dv_dx * h));
+  const T y = std::sqrt(du_dy * w * (du_dy * w) + dv_dy * h * (dv_dy * h));
+  const T rho = std::max(x, y);
+  const T lambda = std::log2(rho) + T(sampler.lod_bias);  // -inf for rho = 0
+  if (!(lambda == lambda)) return T(0);                   // NaN derivatives
+  return std::clamp(lambda, T(sampler.min_lod), T(sampler.max_lod));
+}
+
+template <class T>
+std::array<T, 4> sample(const Texture::Storage& s, const Sampler& sampler, T u, T v, T lambda) {
+  if (!(lambda == lambda)) lambda = T(0);
+  if (lambda <= T(0)) return sample_level<T>(s, sampler, 0, sampler.mag_filter, u, v);
+  const uint32_t last = static_cast<uint32_t>(s.levels.size()) - 1;
+  switch (sampler.mip_filter) {
+    case MipFilter::kNone:
+      return sample_level<T>(s, sampler, 0, sampler.min_filter, u, v);
+    case MipFilter::kNearest: {
+      // Level ceil(lambda + 1/2) - 1 (0 up to lambda = 1/2), clamped to the chain.
+      const T d = lambda <= T(0.5) ? T(0) : std::ceil(lambda + T(0.5)) - T(1);
+      const uint32_t level = d >= T(last) ? last : static_cast<uint32_t>(d);
+      return sample_level<T>(s, sampler, level, sampler.min_filter, u, v);
+    }
+    case MipFilter::kLinear: {
+      if (lambda >= T(last)) return sample_level<T>(s, sampler, last, sampler.min_filter, u, v);
+      const T f = std::floor(lambda);
+      const uint32_t d1 = static_cast<uint32_t>(f);
+      const T frac = lambda - f;
+      const auto a = sample_level<T>(s, sampler, d1, sampler.min_filter, u, v);
+      const auto b = sample_level<T>(s, sampler, d1 + 1, sampler.min_filter, u, v);
+      std::array<T, 4> out;
+      for (int c = 0; c < 4; ++c)
+        out[c] = a[c] + frac * (b[c] - a[c]);
+      return out;
+    }
+  }
+  return {};
+}
+
+}  // namespace tessera::texture

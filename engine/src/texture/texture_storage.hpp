@@ -1,0 +1,75 @@
+// A texture's storage and texel decoding (tessera/texture.hpp), shared by the sampler
+// (sampler-inl.h) in float and in double.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "tessera/texture.hpp"
+
+namespace tessera {
+
+struct Texture::Storage {
+  struct Level {
+    uint32_t width = 0, height = 0;
+    size_t offset = 0;  // into bytes
+  };
+  TextureDesc desc;
+  uint32_t texel = 0;  // bytes per texel
+  std::vector<Level> levels;
+  std::vector<std::byte> bytes;
+
+  const std::byte* at(uint32_t level, uint32_t x, uint32_t y) const {
+    const Level& l = levels[level];
+    return bytes.data() + l.offset + (size_t{y} * l.width + x) * texel;
+  }
+};
+
+namespace detail {
+struct TextureAccess {
+  static const Texture::Storage& storage(const Texture& t) { return *t.storage_; }
+};
+}  // namespace detail
+
+namespace texture {
+
+// sRGB-encoded value c in [0, 1] to linear (IEC 61966-2-1), in double.
+inline double srgb_to_linear(double c) {
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+// A texel as linear RGBA in T (float or double): 8-bit values over 255 (sRGB's RGB decoded in
+// double, then rounded to T), floats as stored, red formats (r, 0, 0, 1).
+template <class T>
+std::array<T, 4> decode(TextureFormat format, const std::byte* p) {
+  const auto unorm = [&](int c) { return static_cast<T>(std::to_integer<uint8_t>(p[c]) / 255.0); };
+  const auto f32 = [&](int c) {
+    float v;
+    std::memcpy(&v, p + 4 * c, sizeof v);
+    return static_cast<T>(v);
+  };
+  switch (format) {
+    case TextureFormat::kRGBA8:
+      return {unorm(0), unorm(1), unorm(2), unorm(3)};
+    case TextureFormat::kRGBA8Srgb: {
+      const auto s = [&](int c) {
+        return static_cast<T>(srgb_to_linear(std::to_integer<uint8_t>(p[c]) / 255.0));
+      };
+      return {s(0), s(1), s(2), unorm(3)};
+    }
+    case TextureFormat::kRGBA32F:
+      return {f32(0), f32(1), f32(2), f32(3)};
+    case TextureFormat::kR8:
+      return {unorm(0), T{0}, T{0}, T{1}};
+    case TextureFormat::kR32F:
+      return {f32(0), T{0}, T{0}, T{1}};
+  }
+  return {T{0}, T{0}, T{0}, T{1}};
+}
+
+}  // namespace texture
+}  // namespace tessera

@@ -1,0 +1,327 @@
+// Textures and samplers (tessera/texture.hpp): mip chains by the stated box filter, every wrap
+// mode and filter against hand-computed texels, the level of detail of OpenGL 4.6 section
+// 8.14, sRGB decoding, the float sampler against the double reference on random coordinates,
+// defined results for NaN, infinite and huge coordinates, errors for bad textures, and
+// sampling from a user fragment shader on both backends.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "engine/src/reference/reference_sampler.hpp"
+#include "tessera/tessera.hpp"
+
+namespace tessera {
+namespace {
+
+std::span<const std::byte> bytes_of(const std::vector<uint8_t>& v) {
+  return std::as_bytes(std::span(v));
+}
+std::span<const std::byte> bytes_of(const std::vector<float>& v) {
+  return std::as_bytes(std::span(v));
+}
+
+// A w x h RGBA8 texture whose texel (x, y) is (x * 10 + 1, y * 10 + 2, x + y, 255 - x).
+std::vector<uint8_t> ramp(uint32_t w, uint32_t h) {
+  std::vector<uint8_t> p;
+  for (uint32_t y = 0; y < h; ++y) {
+    for (uint32_t x = 0; x < w; ++x) {
+      p.push_back(static_cast<uint8_t>(x * 10 + 1));
+      p.push_back(static_cast<uint8_t>(y * 10 + 2));
+      p.push_back(static_cast<uint8_t>(x + y));
+      p.push_back(static_cast<uint8_t>(255 - x));
+    }
+  }
+  return p;
+}
+
+std::array<float, 4> unorm(int r, int g, int b, int a) {
+  return {float(r) / 255.0f, float(g) / 255.0f, float(b) / 255.0f, float(a) / 255.0f};
+}
+
+TEST(Texture, MipChainSizesAndBoxFilterFollowTheStatedRule) {
+  // 5x3: levels 5x3, 2x1, 1x1. Level 1's texel (x, 0) averages (2x..2x+1, 0..1) of level 0.
+  const std::vector<uint8_t> p = ramp(5, 3);
+  const Texture t({5, 3, TextureFormat::kRGBA8}, bytes_of(p), true);
+  ASSERT_EQ(t.levels(), 3u);
+  EXPECT_EQ(t.width(1), 2u);
+  EXPECT_EQ(t.height(1), 1u);
+  EXPECT_EQ(t.width(2), 1u);
+  EXPECT_EQ(t.height(2), 1u);
+  // Level 1 texel 1: level 0 texels x 2..3, y 0..1: R (21 + 31 + 21 + 31 + 2) / 4 = 26,
+  // G (2 + 2 + 12 + 12 + 2) / 4 = 7, B (2 + 3 + 3 + 4 + 2) / 4 = 3, A (253 + 252 + 253 + 252 +
+  // 2) / 4 = 253 (the mean 252.5 rounded up).
+  EXPECT_EQ(t.texel(1, 1, 0), unorm(26, 7, 3, 253));
+  // Level 2 (1x1) from level 1 (2x1): the row counted twice. Level 1 texel 0 is
+  // R (1 + 11 + 1 + 11 + 2) / 4 = 6, G 7, B (0 + 1 + 1 + 2 + 2) / 4 = 1, A (255 + 254 + 255 +
+  // 254 + 2) / 4 = 255; texel 1 as above; the mean R (6 + 26 + 6 + 26 + 2) / 4 = 16.
+  EXPECT_EQ(t.texel(1, 0, 0), unorm(6, 7, 1, 255));
+  EXPECT_EQ(t.texel(2, 0, 0), unorm(16, 7, 2, 254));
+  // Without mipmaps: one level.
+  EXPECT_EQ(Texture({5, 3, TextureFormat::kRGBA8}, bytes_of(p), false).levels(), 1u);
+  // 16384 x 1: 15 levels down to 1x1.
+  const std::vector<float> wide(16384, 0.5f);
+  const Texture w({16384, 1, TextureFormat::kR32F}, bytes_of(wide), true);
+  EXPECT_EQ(w.levels(), 15u);
+  EXPECT_EQ(w.texel(14, 0, 0), (std::array<float, 4>{0.5f, 0, 0, 1}));
+}
+
+TEST(Texture, SrgbTexelsAreDecodedAndAveragedInLinearSpace) {
+  // sRGB 188 is linear 0.50289...; 0 and 255 average to linear 0.5, which encodes as 188.
+  const std::vector<uint8_t> p = {188, 188, 188, 128, 0, 0, 0, 0, 255, 255, 255, 255};
+  const Texture t({3, 1, TextureFormat::kRGBA8Srgb}, bytes_of(p), true);
+  const double linear = std::pow((188 / 255.0 + 0.055) / 1.055, 2.4);
+  EXPECT_EQ(t.texel(0, 0, 0)[0], static_cast<float>(linear));
+  EXPECT_EQ(t.texel(0, 0, 0)[3], 128 / 255.0f);  // alpha is linear
+  // Level 1 (1x1): texels 0 and 1 (linear 0.50289 and 0) averaged twice: 0.2514, sRGB 137.
+  const std::vector<uint8_t> q = {0, 0, 0, 0, 255, 255, 255, 255};
+  const Texture u({2, 1, TextureFormat::kRGBA8Srgb}, bytes_of(q), true);
+  EXPECT_EQ(std::to_integer<int>(u.level_bytes(1)[0]), 188);
+  EXPECT_EQ(std::to_integer<int>(u.level_bytes(1)[3]), 128);  // alpha (0 + 255 + 0 + 255 + 2)/4
+}
+
+TEST(Texture, NearestSamplesTheTexelHoldingThePointUnderEveryWrapMode) {
+  const std::vector<uint8_t> p = ramp(3, 2);
+  const Texture t({3, 2, TextureFormat::kRGBA8}, bytes_of(p), false);
+  Sampler s;
+  s.mag_filter = s.min_filter = Filter::kNearest;
+  s.border_color = {0.25f, 0.5f, 0.75f, 1.0f};
+  const auto at = [&](Wrap wrap, float u, float v) {
+    s.wrap_u = s.wrap_v = wrap;
+    return sample(t, s, u, v, 0.0f);
+  };
+  const auto texel = [&](uint32_t x, uint32_t y) { return t.texel(0, x, y); };
+  // Inside: texel (1, 1) holds u in [1/3, 2/3), v in [1/2, 1).
+  EXPECT_EQ(at(Wrap::kRepeat, 0.5f, 0.75f), texel(1, 1));
+  // u = -0.1 is texel -1 (u w = -0.3); v = 1.2 is texel 2 (v h = 2.4).
+  EXPECT_EQ(at(Wrap::kRepeat, -0.1f, 1.2f), texel(2, 0));
+  EXPECT_EQ(at(Wrap::kClampToEdge, -0.1f, 1.2f), texel(0, 1));
+  EXPECT_EQ(at(Wrap::kMirroredRepeat, -0.1f, 1.2f), texel(0, 1));  // -1 -> 0, 2 -> 1
+  EXPECT_EQ(at(Wrap::kMirroredRepeat, 1.5f, 2.6f), texel(1, 1));   // x 4 -> 1; y 5 -> 1
+  EXPECT_EQ(at(Wrap::kClampToBorder, -0.1f, 0.5f), (std::array<float, 4>{0.25f, 0.5f, 0.75f, 1}));
+  EXPECT_EQ(at(Wrap::kClampToBorder, 0.9f, 0.9f), texel(2, 1));
+}
+
+TEST(Texture, LinearWeighsTheFourTexelsAroundThePoint) {
+  const std::vector<float> p = {0, 1, 2, 3};  // 2x2 R32F
+  const Texture t({2, 2, TextureFormat::kR32F}, bytes_of(p), false);
+  Sampler s;
+  s.wrap_u = s.wrap_v = Wrap::kClampToEdge;
+  // (u w - 1/2, v h - 1/2) = (0.25, 0.5): 0.75 * 0.5 * 0 + 0.25 * 0.5 * 1 + 0.75 * 0.5 * 2 +
+  // 0.25 * 0.5 * 3 = 1.25.
+  EXPECT_FLOAT_EQ(sample(t, s, 0.375f, 0.5f, 0.0f)[0], 1.25f);
+  // Repeat: at u = 0 the left neighbour is the last column.
+  s.wrap_u = Wrap::kRepeat;
+  // (u w - 1/2) = -0.5: texels -1 (= 1) and 0 with weights 1/2; v at texel row 0's centre.
+  EXPECT_FLOAT_EQ(sample(t, s, 0.0f, 0.25f, 0.0f)[0], 0.5f);
+}
+
+TEST(Texture, LevelOfDetailFollowsTheSpecification) {
+  const std::vector<uint8_t> p(64 * 32 * 4, 0);
+  const Texture t({64, 32, TextureFormat::kRGBA8}, bytes_of(p), true);
+  Sampler s;
+  // du/dx = 4/64: 4 texels per pixel in x; dv/dy = 2/32: 2 texels in y. rho = 4, lambda = 2.
+  EXPECT_FLOAT_EQ(texture_lod(t, s, 4.0f / 64, 0, 0, 2.0f / 32), 2.0f);
+  // The longer axis of a rotated footprint: (3, 4) texels in x is 5.
+  EXPECT_FLOAT_EQ(texture_lod(t, s, 3.0f / 64, 4.0f / 32, 0, 0), std::log2(5.0f));
+  s.lod_bias = 0.5f;
+  s.max_lod = 2.25f;
+  EXPECT_FLOAT_EQ(texture_lod(t, s, 4.0f / 64, 0, 0, 0), 2.25f);
+  s = {};
+  s.min_lod = -2;
+  EXPECT_FLOAT_EQ(texture_lod(t, s, 0, 0, 0, 0), -2.0f);  // no change: magnified
+}
+
+TEST(Texture, MipFiltersPickAndBlendTheLevelsTheLodSays) {
+  // An R32F 8x8 texture whose levels are set by hand to constants 0, 10, 20, 30.
+  std::vector<float> p(64, 0.0f);
+  Texture t({8, 8, TextureFormat::kR32F}, bytes_of(p), true);
+  ASSERT_EQ(t.levels(), 4u);
+  for (uint32_t l = 1; l < 4; ++l) {
+    const std::vector<float> level(size_t{t.width(l)} * t.height(l), 10.0f * float(l));
+    t.set_level(l, bytes_of(level));
+  }
+  Sampler s;
+  s.mip_filter = MipFilter::kNearest;
+  EXPECT_EQ(sample(t, s, 0.3f, 0.6f, 0.5f)[0], 0.0f);    // up to 1/2: level 0
+  EXPECT_EQ(sample(t, s, 0.3f, 0.6f, 0.51f)[0], 10.0f);  // ceil(1.01) - 1 = 1
+  EXPECT_EQ(sample(t, s, 0.3f, 0.6f, 1.5f)[0], 10.0f);   // ceil(2) - 1 = 1
+  EXPECT_EQ(sample(t, s, 0.3f, 0.6f, 1.6f)[0], 20.0f);
+  EXPECT_EQ(sample(t, s, 0.3f, 0.6f, 9.0f)[0], 30.0f);  // past the chain: the last level
+  s.mip_filter = MipFilter::kLinear;
+  EXPECT_FLOAT_EQ(sample(t, s, 0.3f, 0.6f, 1.25f)[0], 12.5f);
+  EXPECT_FLOAT_EQ(sample(t, s, 0.3f, 0.6f, 2.5f)[0], 25.0f);
+  EXPECT_EQ(sample(t, s, 0.3f, 0.6f, 3.5f)[0], 30.0f);
+  s.mip_filter = MipFilter::kNone;
+  EXPECT_EQ(sample(t, s, 0.3f, 0.6f, 2.5f)[0], 0.0f);
+}
+
+TEST(Texture, TheFloatSamplerMatchesTheDoubleReference) {
+  // A non-power-of-two RGBA8 texture of noise, every filter and wrap mode, random coordinates
+  // over [-3, 4] and footprints from magnified to past the chain.
+  std::mt19937 rng(7);
+  std::vector<uint8_t> p(37 * 23 * 4);
+  for (uint8_t& b : p)
+    b = static_cast<uint8_t>(rng());
+  const Texture t({37, 23, TextureFormat::kRGBA8}, bytes_of(p), true);
+  std::uniform_real_distribution<float> coord(-3.0f, 4.0f), scale(-6.0f, 6.0f);
+  int near_edges = 0, checked = 0;
+  for (Filter filter : {Filter::kNearest, Filter::kLinear}) {
+    for (MipFilter mip : {MipFilter::kNone, MipFilter::kNearest, MipFilter::kLinear}) {
+      for (Wrap wrap :
+           {Wrap::kRepeat, Wrap::kClampToEdge, Wrap::kMirroredRepeat, Wrap::kClampToBorder}) {
+        Sampler s;
+        s.mag_filter = s.min_filter = filter;
+        s.mip_filter = mip;
+        s.wrap_u = s.wrap_v = wrap;
+        s.border_color = {0.1f, 0.2f, 0.3f, 0.4f};
+        for (int k = 0; k < 2000; ++k) {
+          const float u = coord(rng), v = coord(rng);
+          const float d = std::exp2(scale(rng)) / 37.0f;
+          const float lod = texture_lod(t, s, d, 0.3f * d, -0.2f * d, d);
+          const double want_lod = reference::texture_lod(t, s, d, 0.3 * d, -0.2 * d, d);
+          ASSERT_NEAR(lod, want_lod, 1e-5) << k;
+          const auto got = sample(t, s, u, v, lod);
+          const auto want = reference::sample(t, s, u, v, want_lod);
+          // Nearest: the same texel, unless the point lies within 1e-5 texel of a texel edge
+          // or the LOD within 1e-5 of a level switch, where float and double may round apart.
+          bool edge = false;
+          for (uint32_t l = 0; l < t.levels(); ++l) {
+            for (double x : {double(u) * t.width(l), double(v) * t.height(l)}) {
+              const double f = x - std::floor(x);
+              edge |=
+                  filter == Filter::kNearest ? std::min(f, 1 - f) < 1e-5 : std::abs(f - 0.5) < 1e-5;
+            }
+          }
+          edge |= std::abs(want_lod - std::round(want_lod)) < 1e-5 ||
+                  std::abs(want_lod - 0.5 - std::round(want_lod - 0.5)) < 1e-5;
+          ++checked;
+          if (edge) {
+            ++near_edges;
+            continue;
+          }
+          for (int c = 0; c < 4; ++c) {
+            // Linear: the fraction of a position of up to 150 texels, rounded to float.
+            ASSERT_LE(std::abs(got[c] - want[c]), filter == Filter::kNearest ? 1e-7 : 1e-4)
+                << "filter " << int(filter) << ", mip " << int(mip) << ", wrap " << int(wrap)
+                << " at (" << u << ", " << v << ") lod " << lod;
+          }
+        }
+      }
+    }
+  }
+  // Those near an edge are rare.
+  EXPECT_LT(near_edges, checked / 100);
+}
+
+TEST(Texture, NanInfiniteAndHugeCoordinatesHaveDefinedResults) {
+  const std::vector<uint8_t> p = ramp(4, 4);
+  const Texture t({4, 4, TextureFormat::kRGBA8}, bytes_of(p), true);
+  Sampler s;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  // NaN samples as 0; a NaN LOD as 0 (magnified).
+  EXPECT_EQ(sample(t, s, nan, 0.3f, 0.0f), sample(t, s, 0.0f, 0.3f, 0.0f));
+  EXPECT_EQ(sample(t, s, 0.3f, 0.2f, nan), sample(t, s, 0.3f, 0.2f, 0.0f));
+  EXPECT_EQ(texture_lod(t, s, nan, 0, 0, 0), 0.0f);
+  // Infinities are clamped to 2^30 texels: finite, in range.
+  for (float x : {inf, -inf}) {
+    for (Wrap wrap : {Wrap::kRepeat, Wrap::kMirroredRepeat, Wrap::kClampToEdge}) {
+      s.wrap_u = s.wrap_v = wrap;
+      for (float c : sample(t, s, x, x, 0.0f)) {
+        EXPECT_TRUE(c >= 0.0f && c <= 1.0f) << x << " " << int(wrap);
+      }
+    }
+  }
+  EXPECT_EQ(texture_lod(t, s, inf, 0, 0, 0), s.max_lod);
+  // A million texels out, exactly representable: u w = 1000000.5 is texel 1000000 = 0 mod 4.
+  s = {};
+  s.mag_filter = Filter::kNearest;
+  EXPECT_EQ(sample(t, s, 250000.125f, 0.375f, 0.0f), t.texel(0, 0, 1));
+  s.wrap_u = Wrap::kMirroredRepeat;  // 1000000 mod 8 = 0: texel 0
+  EXPECT_EQ(sample(t, s, 250000.125f, 0.375f, 0.0f), t.texel(0, 0, 1));
+}
+
+TEST(Texture, BadTexturesAreErrors) {
+  const std::vector<uint8_t> p = ramp(4, 4);
+  const auto code = [&](const TextureDesc& d, size_t bytes) {
+    std::vector<uint8_t> data(bytes);
+    try {
+      Texture t(d, bytes_of(data), true);
+    } catch (const Error& e) {
+      return e.code();
+    }
+    return ErrorCode::kUnsupported;  // no error: not what any case expects
+  };
+  EXPECT_EQ(code({0, 4, TextureFormat::kRGBA8}, 0), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(code({16385, 1, TextureFormat::kRGBA8}, 16385 * 4), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(code({4, 4, TextureFormat::kRGBA8}, 63), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(code({4, 4, static_cast<TextureFormat>(9)}, 64), ErrorCode::kInvalidArgument);
+  Texture t({4, 4, TextureFormat::kRGBA8}, bytes_of(p), true);
+  EXPECT_THROW(t.set_level(3, bytes_of(p)), Error);  // levels 0..2
+  EXPECT_THROW(t.set_level(1, bytes_of(p)), Error);  // 2x2 needs 16 bytes
+  EXPECT_THROW(t.texel(0, 4, 0), Error);
+  // The caller's pixels are copied: changing them afterwards changes nothing.
+  std::vector<uint8_t> mine = ramp(4, 4);
+  const Texture copy({4, 4, TextureFormat::kRGBA8}, bytes_of(mine), false);
+  mine[0] = 99;
+  EXPECT_EQ(copy.texel(0, 0, 0), unorm(1, 2, 0, 255));
+}
+
+// A textured square drawn through a user fragment shader that samples with the batch's
+// varyings and derivatives: both backends give the same image within 1/255 (their varyings and
+// derivatives agree within docs/SHADING.md's tolerances), and the magnified texels show.
+TEST(Texture, UserShadersSampleWithTheirDerivativesOnBothBackends) {
+  std::vector<uint8_t> checker;
+  for (uint32_t y = 0; y < 8; ++y) {
+    for (uint32_t x = 0; x < 8; ++x) {
+      const uint8_t c = (x + y) % 2 ? 230 : 20;
+      checker.insert(checker.end(), {c, c, c, 255});
+    }
+  }
+  const Texture t({8, 8, TextureFormat::kRGBA8}, bytes_of(checker), true);
+  Sampler s;
+  s.wrap_u = s.wrap_v = Wrap::kRepeat;
+  // A square tilted away (w from 1 to 3), u, v over [0, 4] x [0, 4]: minified at the far end.
+  const std::vector<Float4> positions = {
+      {-1, -1, 0.5f, 1}, {3, -3, 1.5f, 3}, {3, 3, 1.5f, 3}, {-1, 1, 0.5f, 1}};
+  const std::vector<float> uv = {0, 4, 4, 4, 4, 0, 0, 0};
+  const std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
+  PipelineState p;
+  p.shader = FragmentShader::kUser;
+  p.fragment_function = [&](const FragmentBatch& b, const FragmentOutput& out) {
+    sample(t, s, b, 0, 1, out.color);
+  };
+  std::vector<uint8_t> images[2];
+  for (Backend backend : {Backend::kReference, Backend::kFast}) {
+    RendererOptions options;
+    options.backend = backend;
+    options.threads = 2;
+    Renderer renderer(options);
+    Framebuffer fb({96, 64, 1, ColorFormat::kRGBA8});
+    renderer.draw(fb, p, {positions, uv, 2, indices});
+    images[backend == Backend::kFast] = fb.read_rgba8();
+  }
+  int worst = 0, dark = 0, light = 0, grey = 0;
+  for (size_t i = 0; i < images[0].size(); ++i) {
+    worst = std::max(worst, std::abs(int{images[0][i]} - images[1][i]));
+    if (i % 4 == 0) {
+      dark += images[1][i] < 60;
+      light += images[1][i] > 190;
+      grey += images[1][i] > 110 && images[1][i] < 140;
+    }
+  }
+  EXPECT_LE(worst, 1);
+  EXPECT_GT(dark, 150);  // checks of about 3 pixels a texel near the viewer
+  EXPECT_GT(light, 150);
+  EXPECT_GT(grey, 50);  // minified far away: the mip chain's mean
+}
+
+}  // namespace
+}  // namespace tessera
