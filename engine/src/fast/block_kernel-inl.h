@@ -53,7 +53,6 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace {
 
-constexpr size_t kSamplePlane = binning::kTilePixels;  // values between two samples' planes
 using detail::kBlocksPerTileSide;
 
 // Block (bx, by)'s index in the storage tile whose first block is (tile_bx, tile_by), all in
@@ -298,14 +297,11 @@ void wide_coverage(const TriangleSetup& t, const TileContext& tc, int32_t bx, in
 }
 
 // Hi-Z bounds of a block whose depth changed since they were last computed ("dirty": marked
-// by min > max). Writers only mark blocks; a Hi-Z test recomputes the bounds from the block's
-// samples when it needs them, so triangles that never test Hi-Z never pay for it.
+// by min > max, block_kernel.hpp's mark_hiz_dirty). Writers only mark blocks; a Hi-Z test
+// recomputes the bounds from the block's samples when it needs them, so triangles that never
+// test Hi-Z never pay for it.
 inline bool hiz_dirty(const TileContext& tc, size_t block) {
   return !(tc.hiz_min[block] <= tc.hiz_max[block]);
-}
-inline void mark_hiz_dirty(const TileContext& tc, size_t block) {
-  tc.hiz_min[block] = std::numeric_limits<float>::infinity();
-  tc.hiz_max[block] = -std::numeric_limits<float>::infinity();
 }
 
 // A block holding a NaN sample (a NaN depth clear), which fails every ordering compare and

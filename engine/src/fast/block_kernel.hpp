@@ -7,7 +7,11 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <limits>
+
+#include "binning/tile_grid.hpp"
 
 #include "engine/src/fast/pixel_record.hpp"
 #include "engine/src/fast/triangle_setup.hpp"
@@ -76,6 +80,17 @@ struct TileContext {
   // A user shader's draw (shade::Shader::kUser): the tile task's batch buffers.
   shade::UserBatch* user_batch = nullptr;
 };
+
+// Values between two samples' planes in a tile's storage: sample s of pixel i of block b is
+// value (s * kSamplePlane + b * 64 + i) of the tile's depth and colour arrays.
+inline constexpr size_t kSamplePlane = binning::kTilePixels;
+
+// Marks block `block`'s Hi-Z bounds stale (min > max) after its depth changed: they are
+// recomputed when next needed.
+inline void mark_hiz_dirty(const TileContext& tc, size_t block) {
+  tc.hiz_min[block] = std::numeric_limits<float>::infinity();
+  tc.hiz_max[block] = -std::numeric_limits<float>::infinity();
+}
 
 // A triangle kernel draws setup `t`, whose planes (a shaded draw's, else null) are `planes`.
 using TriangleKernel = void (*)(const TileContext&, const TriangleSetup& t, const float* planes,

@@ -5,18 +5,15 @@
 // (shade/shade-inl.h).
 #include "engine/src/fast/user_fragments.hpp"
 
+#include <algorithm>
 #include <bit>
-#include <limits>
 
-#include "binning/tile_grid.hpp"
 #include "engine/src/sample_positions.hpp"
 #include "engine/src/shade/user_batch.hpp"
 
 namespace tessera::fast {
 
 namespace {
-
-constexpr size_t kSamplePlane = binning::kTilePixels;
 
 // A triangle's 1/w plane at pixel offset (x, y) from its plane origin (1 where it is flat).
 struct QPlane {
@@ -125,9 +122,11 @@ void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float
     const uint32_t m = batch.mask(f);
     if (m == 0 || batch.discarded(f)) continue;
     const size_t i = pixel[f];
+    const float colour[4] = {batch.color(0, f), batch.color(1, f), batch.color(2, f),
+                             batch.color(3, f)};
     uint8_t packed[4];
     for (uint32_t c = 0; c < 4; ++c)
-      packed[c] = to_unorm8(batch.color(c, f));
+      packed[c] = to_unorm8(colour[c]);
     for (uint32_t bits = m; bits != 0; bits &= bits - 1) {
       const uint32_t s = static_cast<uint32_t>(std::countr_zero(bits));
       const size_t at = block * 64 + s * kSamplePlane + i;
@@ -135,20 +134,14 @@ void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float
         tc.depth[at] = z[s * 64 + i];
         wrote = true;
       }
-      for (uint32_t c = 0; c < 4; ++c) {
-        if (tc.rgba8 != nullptr) {
-          tc.rgba8[at * 4 + c] = packed[c];
-        } else {
-          tc.rgba32f[at * 4 + c] = batch.color(c, f);
-        }
+      if (tc.rgba8 != nullptr) {
+        std::copy_n(packed, 4, tc.rgba8 + at * 4);
+      } else {
+        std::copy_n(colour, 4, tc.rgba32f + at * 4);
       }
     }
   }
-  if (wrote) {
-    // The block's depth changed: its Hi-Z bounds are recomputed when next needed.
-    tc.hiz_min[block] = std::numeric_limits<float>::infinity();
-    tc.hiz_max[block] = -std::numeric_limits<float>::infinity();
-  }
+  if (wrote) mark_hiz_dirty(tc, block);
 }
 
 }  // namespace tessera::fast

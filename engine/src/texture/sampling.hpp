@@ -35,11 +35,11 @@ inline int64_t wrap_index(int64_t i, int64_t n, Wrap wrap) {
   return 0;
 }
 
-// floor(x) as an integer, x clamped to +-2^30 texels first; NaN counts as 0.
+// floor(x) as an integer, x (not NaN: sample_level replaces NaN coordinates) clamped to
+// +-2^30 texels first.
 template <class T>
 int64_t floor_index(T x) {
   constexpr T kLimit = T(1 << 30);
-  if (!(x == x)) return 0;
   return static_cast<int64_t>(std::floor(std::clamp(x, -kLimit, kLimit)));
 }
 

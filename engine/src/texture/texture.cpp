@@ -33,7 +33,7 @@ void downsample(Texture::Storage& s, uint32_t to) {
       const uint32_t y0 = std::min(2 * y, src.height - 1), y1 = std::min(2 * y + 1, src.height - 1);
       const std::byte* in[4] = {s.at(to - 1, x0, y0), s.at(to - 1, x1, y0), s.at(to - 1, x0, y1),
                                 s.at(to - 1, x1, y1)};
-      std::byte* out = const_cast<std::byte*>(s.at(to, x, y));
+      std::byte* out = s.at(to, x, y);
       const uint32_t channels =
           format == TextureFormat::kR8 || format == TextureFormat::kR32F ? 1 : 4;
       for (uint32_t c = 0; c < channels; ++c) {

@@ -23,9 +23,15 @@ struct Texture::Storage {
   std::vector<Level> levels;
   std::vector<std::byte> bytes;
 
-  const std::byte* at(uint32_t level, uint32_t x, uint32_t y) const {
+  size_t offset(uint32_t level, uint32_t x, uint32_t y) const {
     const Level& l = levels[level];
-    return bytes.data() + l.offset + (size_t{y} * l.width + x) * texel;
+    return l.offset + (size_t{y} * l.width + x) * texel;
+  }
+  const std::byte* at(uint32_t level, uint32_t x, uint32_t y) const {
+    return bytes.data() + offset(level, x, y);
+  }
+  std::byte* at(uint32_t level, uint32_t x, uint32_t y) {
+    return bytes.data() + offset(level, x, y);
   }
 };
 
