@@ -238,6 +238,26 @@ void validate_phong(const PhongState& phong) {
   }
 }
 
+const char* output_name(TargetOutput output) {
+  switch (output) {
+    case TargetOutput::kColor:
+      return "kColor";
+    case TargetOutput::kEyeDepth:
+      return "kEyeDepth";
+    case TargetOutput::kNormal:
+      return "kNormal";
+    case TargetOutput::kPosition:
+      return "kPosition";
+    case TargetOutput::kBarycentrics:
+      return "kBarycentrics";
+    case TargetOutput::kPrimitiveId:
+      return "kPrimitiveId";
+    case TargetOutput::kObjectId:
+      return "kObjectId";
+  }
+  return "?";
+}
+
 }  // namespace
 
 void validate_shading(const Framebuffer& target, const PipelineState& pipeline,
@@ -247,40 +267,60 @@ void validate_shading(const Framebuffer& target, const PipelineState& pipeline,
                ("varying_modes[" + std::to_string(i) + "]").c_str());
   }
   check_enum(pipeline.shader, FragmentShader::kUser, "shader");
-  check_enum(pipeline.output, TargetOutput::kObjectId, "output");
   const uint32_t count = input.attribute_count;
   const VaryingRoles& roles = pipeline.roles;
-  if (pipeline.output == TargetOutput::kNormal)
-    check_group(roles.normal, 3, count, "normal", "output kNormal");
-  if (pipeline.output == TargetOutput::kPosition) {
-    check_group(roles.position, 3, count, "position", "output kPosition");
-  }
-  if (pipeline.output == TargetOutput::kColor && pipeline.shader == FragmentShader::kPhong) {
-    check_group(roles.normal, 3, count, "normal", "shader kPhong");
-    check_group(roles.position, 3, count, "position", "shader kPhong");
-    validate_phong(pipeline.phong);
-  }
-  if (pipeline.output == TargetOutput::kColor && pipeline.shader == FragmentShader::kUser &&
-      pipeline.color_write && !pipeline.fragment_function) {
-    fail(ErrorCode::kInvalidArgument, "shader kUser needs a fragment_function, which is empty");
-  }
-  // IDs are written as floats: exact below 2^24, and only a float target keeps them.
-  constexpr uint64_t kExactIds = uint64_t{1} << 24;
-  const bool ids =
-      pipeline.output == TargetOutput::kPrimitiveId || pipeline.output == TargetOutput::kObjectId;
-  if (ids && pipeline.color_write && target.desc().color_format != ColorFormat::kRGBA32F) {
-    fail(ErrorCode::kInvalidArgument,
-         "output kPrimitiveId and kObjectId need an RGBA32F colour target (an RGBA8 one would "
-         "clamp the IDs to 0..1)");
-  }
-  if (pipeline.output == TargetOutput::kPrimitiveId && triangles > kExactIds) {
-    fail(ErrorCode::kInvalidArgument,
-         "output kPrimitiveId: the draw has " + std::to_string(triangles) +
-             " triangles, more than the 2^24 a float target holds exactly");
-  }
-  if (pipeline.output == TargetOutput::kObjectId && pipeline.object_id >= kExactIds) {
-    fail(ErrorCode::kInvalidArgument, "object_id " + std::to_string(pipeline.object_id) +
-                                          " is not below 2^24 (exact in a float target)");
+  bool phong_checked = false;
+  // Each colour target's output (target 0's `output`, the extra targets' extra_outputs).
+  const FramebufferDesc& desc = target.desc();
+  for (uint32_t t = 0; t <= desc.extra_targets; ++t) {
+    const TargetOutput output = t == 0 ? pipeline.output : pipeline.extra_outputs[t - 1];
+    const ColorFormat format = t == 0 ? desc.color_format : desc.extra_formats[t - 1];
+    const std::string name =
+        t == 0 ? std::string("output") : "extra_outputs[" + std::to_string(t - 1) + "]";
+    check_enum(output, TargetOutput::kObjectId, name.c_str());
+    const std::string what = name + " " + output_name(output);
+    if (output == TargetOutput::kNormal) check_group(roles.normal, 3, count, "normal", what.c_str());
+    if (output == TargetOutput::kPosition)
+      check_group(roles.position, 3, count, "position", what.c_str());
+    if (output == TargetOutput::kColor && pipeline.shader == FragmentShader::kPhong) {
+      check_group(roles.normal, 3, count, "normal", "shader kPhong");
+      check_group(roles.position, 3, count, "position", "shader kPhong");
+      if (!phong_checked) validate_phong(pipeline.phong);
+      phong_checked = true;
+    }
+    const bool user = output == TargetOutput::kColor && pipeline.shader == FragmentShader::kUser;
+    if (user && pipeline.color_write && !pipeline.fragment_function) {
+      fail(ErrorCode::kInvalidArgument, "shader kUser needs a fragment_function, which is empty");
+    }
+    if (!pipeline.color_write) continue;
+    const bool ids = output == TargetOutput::kPrimitiveId || output == TargetOutput::kObjectId;
+    if (format == ColorFormat::kR32UI) {
+      // An integer target holds IDs exactly, and a user shader's integers; nothing else.
+      if (!ids && !user) {
+        fail(ErrorCode::kInvalidArgument,
+             what + " cannot go to colour target " + std::to_string(t) +
+                 ", which is R32UI (it takes kPrimitiveId, kObjectId or a user shader's kColor)");
+      }
+      continue;
+    }
+    if (!ids) continue;
+    // IDs written as floats: exact below 2^24, and only a float target keeps them.
+    constexpr uint64_t kExactIds = uint64_t{1} << 24;
+    if (format == ColorFormat::kRGBA8) {
+      fail(ErrorCode::kInvalidArgument,
+           what + " needs an RGBA32F, R32F or R32UI colour target (target " + std::to_string(t) +
+               " is RGBA8, which would clamp the IDs to 0..1)");
+    }
+    if (output == TargetOutput::kPrimitiveId && triangles > kExactIds) {
+      fail(ErrorCode::kInvalidArgument,
+           what + ": the draw has " + std::to_string(triangles) +
+               " triangles, more than the 2^24 a float target holds exactly (use an R32UI target)");
+    }
+    if (output == TargetOutput::kObjectId && pipeline.object_id >= kExactIds) {
+      fail(ErrorCode::kInvalidArgument,
+           "object_id " + std::to_string(pipeline.object_id) +
+               " is not below 2^24 (exact in a float target; use an R32UI target)");
+    }
   }
 }
 

@@ -30,7 +30,20 @@ void validate(const FramebufferDesc& d) {
         "framebuffer sample count " + std::to_string(d.samples) + " is not one of 1, 2, 4, 8, 16");
   }
   if (d.color_format != ColorFormat::kRGBA8 && d.color_format != ColorFormat::kRGBA32F) {
-    throw Error(ErrorCode::kInvalidArgument, "framebuffer colour format is not a ColorFormat");
+    throw Error(ErrorCode::kInvalidArgument,
+                "framebuffer colour format (target 0) is not kRGBA8 or kRGBA32F");
+  }
+  if (d.extra_targets > kMaxColorTargets - 1) {
+    throw Error(ErrorCode::kInvalidArgument,
+                "framebuffer extra_targets " + std::to_string(d.extra_targets) +
+                    " is out of range (0.." + std::to_string(kMaxColorTargets - 1) + ")");
+  }
+  for (uint32_t t = 0; t < d.extra_targets; ++t) {
+    const auto f = static_cast<uint32_t>(d.extra_formats[t]);
+    if (f > static_cast<uint32_t>(ColorFormat::kR32UI)) {
+      throw Error(ErrorCode::kInvalidArgument, "framebuffer extra_formats[" + std::to_string(t) +
+                                                   "] is not a ColorFormat");
+    }
   }
   if (d.depth_format != DepthFormat::kFloat32 && d.depth_format != DepthFormat::kUnorm24 &&
       d.depth_format != DepthFormat::kUnorm16) {
@@ -46,8 +59,10 @@ Framebuffer::Framebuffer(const FramebufferDesc& desc) {
   s->desc = desc;
   s->grid = binning::TileGrid::for_size(desc.width, desc.height);
   const uint64_t samples = uint64_t{s->grid.tile_count()} * binning::kTilePixels * desc.samples;
-  const uint64_t color_bytes = desc.color_format == ColorFormat::kRGBA8 ? 4 : 16;
-  const uint64_t bytes = samples * (color_bytes + 4);
+  uint64_t sample_bytes = (desc.color_format == ColorFormat::kRGBA8 ? 4 : 16) + 4;
+  for (uint32_t t = 0; t < desc.extra_targets; ++t)
+    sample_bytes += 4 * detail::words_per_sample(desc.extra_formats[t]);
+  const uint64_t bytes = samples * sample_bytes;
   if (bytes > kMaxFramebufferBytes) {
     throw Error(ErrorCode::kOutOfMemory,
                 "framebuffer " + std::to_string(desc.width) + "x" + std::to_string(desc.height) +
@@ -60,6 +75,12 @@ Framebuffer::Framebuffer(const FramebufferDesc& desc) {
       s->rgba8.assign(samples * 4, 0);
     } else {
       s->rgba32f.assign(samples * 4, 0.0f);
+    }
+    for (uint32_t t = 0; t < desc.extra_targets; ++t) {
+      detail::ExtraTarget& target = s->extra[t];
+      target.format = desc.extra_formats[t];
+      target.words = detail::words_per_sample(target.format);
+      target.data.assign(samples * target.words, 0u);
     }
     const float far = detail::encode_depth(1.0, detail::depth_scale(desc.depth_format));
     s->depth.assign(samples, far);
@@ -108,6 +129,120 @@ void Framebuffer::clear_depth(float depth) {
   std::fill(storage_->hiz_min.begin(), storage_->hiz_min.end(), stored);
   std::fill(storage_->hiz_max.begin(), storage_->hiz_max.end(), stored);
   storage_->hiz_valid = !std::isnan(depth);
+}
+
+namespace {
+
+// The extra target `target` (1..3) of `s`, or an error naming what was wrong.
+const detail::ExtraTarget& extra_target(const detail::FramebufferStorage& s, uint32_t target) {
+  if (target == 0 || target > s.desc.extra_targets) {
+    throw Error(ErrorCode::kInvalidArgument,
+                "colour target " + std::to_string(target) + " does not exist (the framebuffer has " +
+                    std::to_string(1 + s.desc.extra_targets) + ")");
+  }
+  return s.extra[target - 1];
+}
+
+const char* format_name(ColorFormat f) {
+  switch (f) {
+    case ColorFormat::kRGBA8:
+      return "RGBA8";
+    case ColorFormat::kRGBA32F:
+      return "RGBA32F";
+    case ColorFormat::kR32F:
+      return "R32F";
+    case ColorFormat::kR32UI:
+      return "R32UI";
+  }
+  return "?";
+}
+
+}  // namespace
+
+ColorFormat Framebuffer::target_format(uint32_t target) const {
+  if (target == 0) return storage_->desc.color_format;
+  return extra_target(*storage_, target).format;
+}
+
+void Framebuffer::clear_target(uint32_t target, std::array<float, 4> rgba) {
+  if (target == 0) {
+    clear_color(rgba);
+    return;
+  }
+  if (extra_target(*storage_, target).format == ColorFormat::kR32UI) {
+    throw Error(ErrorCode::kInvalidArgument, "colour target " + std::to_string(target) +
+                                                 " is R32UI: clear it with clear_target_uint");
+  }
+  detail::ExtraTarget& t = storage_->extra[target - 1];
+  uint32_t value[4];
+  detail::store_target_value(t.format, value, rgba.data(), 0);
+  for (size_t i = 0; i < t.data.size(); i += t.words)
+    std::copy_n(value, t.words, t.data.data() + i);
+}
+
+void Framebuffer::clear_target_uint(uint32_t target, uint32_t value) {
+  if (target == 0 || extra_target(*storage_, target).format != ColorFormat::kR32UI) {
+    throw Error(ErrorCode::kInvalidArgument,
+                "colour target " + std::to_string(target) + " is " +
+                    format_name(target_format(target)) + ", not R32UI: clear it with clear_target");
+  }
+  detail::ExtraTarget& t = storage_->extra[target - 1];
+  std::fill(t.data.begin(), t.data.end(), value);
+}
+
+std::vector<float> Framebuffer::read_target(uint32_t target) const {
+  if (target == 0) return read_rgba32f();
+  const detail::ExtraTarget& t = extra_target(*storage_, target);
+  if (t.format == ColorFormat::kR32UI) {
+    throw Error(ErrorCode::kInvalidArgument, "colour target " + std::to_string(target) +
+                                                 " is R32UI: read it with read_target_uint");
+  }
+  const detail::FramebufferStorage& s = *storage_;
+  const uint32_t n = s.desc.samples;
+  const uint32_t channels = t.format == ColorFormat::kR32F ? 1 : 4;
+  std::vector<float> out(size_t{s.desc.width} * s.desc.height * channels);
+  for (uint32_t y = 0; y < s.desc.height; ++y) {
+    for (uint32_t x = 0; x < s.desc.width; ++x) {
+      const size_t o = (size_t{y} * s.desc.width + x) * channels;
+      for (uint32_t c = 0; c < channels; ++c) {
+        // The box resolve: RGBA8 like read_rgba8 (the bytes' rounded mean), floats averaged.
+        uint32_t bytes = 0;
+        float sum = 0.0f;
+        for (uint32_t k = 0; k < n; ++k) {
+          const uint32_t* at = t.data.data() + s.sample_index(x, y, k) * t.words;
+          if (t.format == ColorFormat::kRGBA8) {
+            uint8_t b[4];
+            std::memcpy(b, at, 4);
+            bytes += b[c];
+          } else {
+            float f;
+            std::memcpy(&f, at + c, 4);
+            sum += f;
+          }
+        }
+        out[o + c] = t.format == ColorFormat::kRGBA8
+                         ? static_cast<float>((bytes + n / 2) / n) / 255.0f
+                         : sum / static_cast<float>(n);
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<uint32_t> Framebuffer::read_target_uint(uint32_t target) const {
+  if (target == 0 || extra_target(*storage_, target).format != ColorFormat::kR32UI) {
+    throw Error(ErrorCode::kInvalidArgument,
+                "colour target " + std::to_string(target) + " is " +
+                    format_name(target_format(target)) + ", not R32UI: read it with read_target");
+  }
+  const detail::FramebufferStorage& s = *storage_;
+  const detail::ExtraTarget& t = s.extra[target - 1];
+  std::vector<uint32_t> out(size_t{s.desc.width} * s.desc.height);
+  for (uint32_t y = 0; y < s.desc.height; ++y) {
+    for (uint32_t x = 0; x < s.desc.width; ++x)
+      out[size_t{y} * s.desc.width + x] = t.data[s.sample_index(x, y, 0)];
+  }
+  return out;
 }
 
 namespace detail {

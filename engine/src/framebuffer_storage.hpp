@@ -10,13 +10,16 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <mutex>
 #include <vector>
 
 #include "binning/tile_grid.hpp"
 #include "engine/src/aligned_allocator.hpp"
+#include "engine/src/sample_positions.hpp"
 #include "tessera/framebuffer.hpp"
 #include "tessera/pipeline.hpp"
+#include "tessera/types.hpp"
 
 namespace tessera {
 
@@ -83,12 +86,50 @@ inline bool depth_passes(CompareOp op, float incoming, float stored) {
   return false;
 }
 
+// 32-bit words per sample of a colour target's format.
+constexpr uint32_t words_per_sample(ColorFormat format) {
+  return format == ColorFormat::kRGBA32F ? 4 : 1;
+}
+
+// An extra colour target (FramebufferDesc::extra_targets), laid out as the depth values are,
+// each sample `words_per_sample` 32-bit words: RGBA8's four bytes in order, RGBA32F's four
+// floats, R32F's float, R32UI's integer.
+struct ExtraTarget {
+  ColorFormat format = ColorFormat::kR32F;
+  uint32_t words = 1;
+  AlignedVector<uint32_t> data;
+};
+
+// Stores one sample's value at `at` (its first word) in `format`: RGBA from `rgba` (RGBA8
+// rounded as to_unorm8 does, R32F its R), R32UI `id`. Shared by every writer of the extra
+// targets.
+inline void store_target_value(ColorFormat format, uint32_t* at, const float* rgba, uint32_t id) {
+  switch (format) {
+    case ColorFormat::kRGBA8: {
+      const uint8_t bytes[4] = {to_unorm8(rgba[0]), to_unorm8(rgba[1]), to_unorm8(rgba[2]),
+                                to_unorm8(rgba[3])};
+      std::memcpy(at, bytes, 4);
+      return;
+    }
+    case ColorFormat::kRGBA32F:
+      std::memcpy(at, rgba, 16);
+      return;
+    case ColorFormat::kR32F:
+      std::memcpy(at, rgba, 4);
+      return;
+    case ColorFormat::kR32UI:
+      *at = id;
+      return;
+  }
+}
+
 struct FramebufferStorage {
   FramebufferDesc desc;
   binning::TileGrid grid;
   AlignedVector<uint8_t> rgba8;  // 4 per sample, when desc.color_format == kRGBA8
   AlignedVector<float> rgba32f;  // 4 per sample, when desc.color_format == kRGBA32F
   AlignedVector<float> depth;    // 1 per sample, encoded (encode_depth)
+  std::array<ExtraTarget, kMaxColorTargets - 1> extra;  // the first desc.extra_targets
   // Hi-Z: the nearest and farthest depth over all samples of each 8x8 block (index
   // tile * kBlocksPerTile + block in tile). Valid only while hiz_valid; a writer that does not
   // maintain them (the reference rasterizer) clears the flag.

@@ -125,8 +125,9 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
     // attributes) for NaN and infinity as it reads them, in cache, rather than in a pass of their
     // own over the arrays first, and throws the same error before drawing anything. The others
     // are checked here: an indexed draw's vertices must all be finite, also those no index uses.
-    const bool check_in_setup = !cull_non_finite && impl_->options.backend == Backend::kFast &&
-                                fast::FastRasterizer::checks_finite_values(input, pipeline);
+    const bool check_in_setup =
+        !cull_non_finite && impl_->options.backend == Backend::kFast &&
+        fast::FastRasterizer::checks_finite_values(input, pipeline, target.desc());
     validate_draw(target, pipeline, input, !cull_non_finite && !check_in_setup, &impl_->arena);
     // Pending clears are left to the fast engine's tiles (draw_triangles writes them for the
     // reference).
@@ -151,8 +152,7 @@ void Renderer::draw(Framebuffer& target, const PipelineState& pipeline, const Dr
         v[k] = input.indices.empty() ? static_cast<uint32_t>(3 * t + k) : input.indices[3 * t + k];
       if (finite[v[0]] && finite[v[1]] && finite[v[2]]) {
         kept.insert(kept.end(), v, v + 3);
-        if (pipeline.output == TargetOutput::kPrimitiveId)
-          kept_ids.push_back(static_cast<uint32_t>(t));
+        kept_ids.push_back(static_cast<uint32_t>(t));  // primitive IDs stay the caller's
       } else {
         ++impl_->counters.triangles_invalid;
       }
@@ -179,15 +179,15 @@ void Renderer::draw_vertices(Framebuffer& target, const PipelineState& pipeline,
 
 void Renderer::draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,
                               const DrawInput& input, bool check_finite,
-                              std::span<const uint32_t> primitive_ids) {
+                              std::span<const uint32_t> primitive_ids, bool all_targets) {
   if (impl_->options.backend == Backend::kReference) {
     storage.write_all_pending();
     // The reference writes depth without maintaining the fast engine's Hi-Z bounds.
     if (pipeline.depth_test && pipeline.depth_write) storage.hiz_valid = false;
-    reference::draw(storage, pipeline, input, impl_->counters, primitive_ids);
+    reference::draw(storage, pipeline, input, impl_->counters, primitive_ids, all_targets);
   } else {
     impl_->fast.draw(impl_->arena, storage, pipeline, input, impl_->counters, check_finite,
-                     primitive_ids);
+                     primitive_ids, all_targets);
   }
 }
 
@@ -198,7 +198,9 @@ void Renderer::draw_points(Framebuffer& target, const PipelineState& pipeline,
     detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
     tessera::draw_points(
         storage, pipeline, state, input,
-        [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+        [&](const PipelineState& p, const DrawInput& t) {
+          draw_triangles(storage, p, t, false, {}, false);
+        },
         [&](std::span<const WindowPoint> points, float size) {
           if (impl_->options.backend == Backend::kReference) {
             draw_reference_round_points(storage, pipeline, points, size, impl_->counters);
@@ -217,7 +219,9 @@ void Renderer::draw_lines(Framebuffer& target, const PipelineState& pipeline,
     detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
     tessera::draw_lines(
         storage, pipeline, state, input,
-        [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+        [&](const PipelineState& p, const DrawInput& t) {
+          draw_triangles(storage, p, t, false, {}, false);
+        },
         [&](const LineState& s, std::span<const WindowSegment> segments) {
           if (impl_->options.backend == Backend::kReference) {
             draw_reference_thin_lines(storage, pipeline, s, segments, impl_->counters);
@@ -238,7 +242,9 @@ void Renderer::draw_polygon(Framebuffer& target, const PipelineState& pipeline,
     detail::FramebufferStorage& storage = detail::FramebufferAccess::storage(target);
     tessera::draw_polygon(
         storage, pipeline, state, input, contour_sizes,
-        [&](const PipelineState& p, const DrawInput& t) { draw_triangles(storage, p, t); },
+        [&](const PipelineState& p, const DrawInput& t) {
+          draw_triangles(storage, p, t, false, {}, false);
+        },
         [&](const std::vector<std::vector<WindowPoint>>& contours, FillRule rule) {
           if (impl_->options.backend == Backend::kReference) {
             draw_reference_scanline_polygon(storage, pipeline, contours, rule, impl_->counters);

@@ -9,10 +9,14 @@
 #include <vector>
 
 #include "tessera/export.hpp"
+#include "tessera/types.hpp"
 
 namespace tessera {
 
-enum class ColorFormat { kRGBA8, kRGBA32F };
+// Formats of colour targets. Target 0 (the colour every primitive draws) is kRGBA8 or kRGBA32F;
+// the extra targets of multiple render targets take any of them: kR32F holds one float,
+// kR32UI one unsigned 32-bit integer (exact IDs).
+enum class ColorFormat { kRGBA8, kRGBA32F, kR32F, kR32UI };
 
 // How depth is kept (docs/TRADEOFFS.md measures each). kFloat32 stores z as a float: finest
 // near 0, which is where reversed Z (Camera::reversed_z, compare kGreater, clear to 0) puts
@@ -25,8 +29,14 @@ struct FramebufferDesc {
   uint32_t width = 0;    // 1..kMaxFramebufferSize
   uint32_t height = 0;   // 1..kMaxFramebufferSize
   uint32_t samples = 1;  // 1, 2, 4, 8 or 16
-  ColorFormat color_format = ColorFormat::kRGBA8;
+  ColorFormat color_format = ColorFormat::kRGBA8;  // target 0: kRGBA8 or kRGBA32F
   DepthFormat depth_format = DepthFormat::kFloat32;
+  // Multiple render targets: targets 1..extra_targets (0..3), of formats extra_formats[0..],
+  // with the framebuffer's size and samples and one depth buffer for all. Every triangle draw
+  // writes every target (what each receives: PipelineState::extra_outputs); points, lines and
+  // polygons write target 0 only.
+  uint32_t extra_targets = 0;
+  std::array<ColorFormat, kMaxColorTargets - 1> extra_formats{};
 };
 
 // Largest total storage of one framebuffer (colour + depth, all samples).
@@ -64,6 +74,20 @@ class TESSERA_API Framebuffer {
   // an RGBA8 framebuffer returns that result divided by 255.
   std::vector<uint8_t> read_rgba8() const;
   std::vector<float> read_rgba32f() const;
+  // Any colour target t (0..target_count() - 1). Values per pixel: 4 for the RGBA formats,
+  // 1 for kR32F; read_target of an RGBA8 target divides the resolved bytes by 255, as
+  // read_rgba32f does. kR32UI targets are read by read_target_uint only, and resolve to
+  // sample 0's value (IDs are not averaged). Throws Error(kInvalidArgument) for a target
+  // that does not exist or the wrong read for its format.
+  uint32_t target_count() const noexcept { return 1 + desc().extra_targets; }
+  ColorFormat target_format(uint32_t target) const;
+  std::vector<float> read_target(uint32_t target) const;
+  std::vector<uint32_t> read_target_uint(uint32_t target) const;
+  // Clears one target (clear_color is clear_target(0, ...)); kR32F keeps rgba[0]. The
+  // extra targets start cleared to 0.
+  void clear_target(uint32_t target, std::array<float, 4> rgba);
+  void clear_target_uint(uint32_t target, uint32_t value);
+
   // Depth of sample 0 of each pixel, top row first, one float per pixel.
   std::vector<float> read_depth() const;
   // Every sample's depth: (y * width + x) * samples + s.

@@ -60,7 +60,11 @@ struct PipelineState {
   // colour from the colour varyings 0..3 as before.
   std::array<VaryingMode, kMaxVaryings> varying_modes{};  // per varying; kDefault: interpolation
   FragmentShader shader = FragmentShader::kGouraud;
-  TargetOutput output = TargetOutput::kColor;
+  TargetOutput output = TargetOutput::kColor;  // what colour target 0 receives
+  // What extra target t + 1 of a framebuffer with several (FramebufferDesc::extra_targets)
+  // receives. An R32UI target takes kPrimitiveId, kObjectId (exact) or a user shader's
+  // kColor (FragmentOutput::extra_uint); a float target stores R of RGBA.
+  std::array<TargetOutput, kMaxColorTargets - 1> extra_outputs{};
   VaryingRoles roles;
   PhongState phong;                    // FragmentShader::kPhong
   FragmentFunction fragment_function;  // FragmentShader::kUser

@@ -197,7 +197,7 @@ class TESSERA_API Renderer {
   struct Impl;
   void draw_triangles(detail::FramebufferStorage& storage, const PipelineState& pipeline,
                       const DrawInput& input, bool check_finite = false,
-                      std::span<const uint32_t> primitive_ids = {});
+                      std::span<const uint32_t> primitive_ids = {}, bool all_targets = true);
   std::unique_ptr<Impl> impl_;
 };
 

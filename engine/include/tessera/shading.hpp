@@ -131,9 +131,17 @@ struct FragmentOutput {
   // the built-in shaders' colours are (clamped to [0, 1] and rounded in an RGBA8 target; NaN
   // becomes 0 there). Undefined on entry: the shader writes every live fragment's.
   float* color = nullptr;
-  // Set discard[i] to nonzero to drop fragment i: neither its colour nor its depth is written.
-  // All zero on entry.
+  // Set discard[i] to nonzero to drop fragment i: neither its colour nor its depth is written
+  // (in any target). All zero on entry.
   uint8_t* discard = nullptr;
+  // Multiple render targets (FramebufferDesc::extra_targets): extra target t + 1's values,
+  // extra[t][c * kFragmentBatchStride + i] for its channels c (4 for an RGBA8 or RGBA32F
+  // target, 1 for R32F), and for an R32UI target extra_uint[t][i] instead (extra[t] is then
+  // null). Null for targets the framebuffer does not have. The engine keeps what the shader
+  // writes only for targets whose output (PipelineState::output, extra_outputs) is kColor;
+  // it computes the vision outputs of the others itself.
+  std::array<float*, kMaxColorTargets - 1> extra{};
+  std::array<uint32_t*, kMaxColorTargets - 1> extra_uint{};
 };
 
 // The engine calls the function from several threads at once, for batches of different

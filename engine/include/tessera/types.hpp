@@ -19,5 +19,8 @@ inline constexpr uint32_t kMaxFramebufferSize = 16384;
 // Largest number of float attributes (varyings) per vertex.
 inline constexpr uint32_t kMaxVaryings = 32;
 inline constexpr uint32_t kMaxAttributes = kMaxVaryings;
+// Colour targets per framebuffer: target 0 and up to three extra ones (multiple render
+// targets).
+inline constexpr uint32_t kMaxColorTargets = 4;
 
 }  // namespace tessera

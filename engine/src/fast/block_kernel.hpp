@@ -71,6 +71,8 @@ struct TileContext {
   float* depth = nullptr;    // sample plane s of block b at (s * 64 + b) * 64
   uint8_t* rgba8 = nullptr;  // 4 bytes per sample value, same layout
   float* rgba32f = nullptr;  // 4 floats per sample value, same layout
+  // The extra colour targets' (FramebufferStorage::extra), same layout, in 32-bit words.
+  std::array<uint32_t*, kMaxColorTargets - 1> extra{};
   float* hiz_min = nullptr;  // per block of the tile
   float* hiz_max = nullptr;
 

@@ -123,15 +123,17 @@ int64_t FastRasterizer::simd_target() const noexcept {
   return state_->target;
 }
 
-bool FastRasterizer::checks_finite_values(const DrawInput& input, const PipelineState& pipeline) {
+bool FastRasterizer::checks_finite_values(const DrawInput& input, const PipelineState& pipeline,
+                                          const FramebufferDesc& desc) {
   return input.indices.empty() && input.attribute_count <= 4 &&
          (input.attribute_count == 0 || pipeline.roles.color == 0) &&
-         shade::layout_for(pipeline, input.attribute_count).shader == shade::Shader::kGouraud;
+         shade::layout_for(pipeline, input.attribute_count, desc).shader == shade::Shader::kGouraud;
 }
 
 void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb,
                           const PipelineState& pipeline, const DrawInput& input, Counters& counters,
-                          bool check_finite, std::span<const uint32_t> primitive_ids) {
+                          bool check_finite, std::span<const uint32_t> primitive_ids,
+                          bool all_targets) {
   State& st = *state_;
   const bool indexed = !input.indices.empty();
   const size_t triangles = (indexed ? input.indices.size() : input.positions.size()) / 3;
@@ -167,7 +169,9 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
                                                                         : ColorMode::kRGBA32F;
   // A shaded draw's setups carry its planes, and its kernels read them: no records, which hold
   // a Gouraud colour.
-  const shade::Layout layout = shade::layout_for(pipeline, input.attribute_count);
+  FramebufferDesc shaded_desc = fb.desc;  // the targets this draw writes
+  if (!all_targets) shaded_desc.extra_targets = 0;
+  const shade::Layout layout = shade::layout_for(pipeline, input.attribute_count, shaded_desc);
   const bool shaded = layout.shader != shade::Shader::kGouraud;
   if (shaded) draw.layout = &layout;
   const size_t plane_stride = shaded ? size_t{3} * layout.count : 0;

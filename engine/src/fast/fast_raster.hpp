@@ -35,7 +35,8 @@ class FastRasterizer {
   // Whether draw() can check `input`'s values for NaN and infinity itself (check_finite): a
   // triangle soup (every vertex is drawn) of the plain Gouraud colour whose attributes are at
   // most the four colour channels the setup reads.
-  static bool checks_finite_values(const DrawInput& input, const PipelineState& pipeline);
+  static bool checks_finite_values(const DrawInput& input, const PipelineState& pipeline,
+                                   const FramebufferDesc& desc);
 
   // Draws a validated draw call (see draw_validation.hpp) inside `arena`: every shading state
   // (shade/layout.hpp), its triangles' primitive indices `primitive_ids[t]`, or t where that is
@@ -43,10 +44,13 @@ class FastRasterizer {
   // a draw checks_finite_values() accepts whose finite values were not validated: each
   // piece's vertices are checked as it is set up, and a NaN or infinity anywhere throws
   // validation's error (check_finite_values) before anything is drawn or counted. Throws
-  // BinMemoryError when a pass cannot allocate its setups and bins.
+  // BinMemoryError when a pass cannot allocate its setups and bins. Every colour target is
+  // written, or only target 0 without all_targets (the triangles of points, lines and
+  // polygons).
   void draw(tbb::task_arena& arena, detail::FramebufferStorage& target,
             const PipelineState& pipeline, const DrawInput& input, Counters& counters,
-            bool check_finite = false, std::span<const uint32_t> primitive_ids = {});
+            bool check_finite = false, std::span<const uint32_t> primitive_ids = {},
+            bool all_targets = true);
 
  private:
   struct State;

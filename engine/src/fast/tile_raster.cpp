@@ -4,7 +4,9 @@
 #include "engine/src/fast/tile_raster.hpp"
 
 #include <algorithm>
+#include <array>
 #include <optional>
+#include <span>
 #include <type_traits>
 
 #include "engine/src/shade/user_batch.hpp"
@@ -178,7 +180,12 @@ void raster_tile(const TileContext& draw, TriangleKernel kernel, PixelKernel pix
   // A user fragment function's batch buffers: the task's own.
   std::optional<shade::UserBatch> user_batch;
   if (draw.layout != nullptr && draw.layout->shader == shade::Shader::kUser) {
-    user_batch.emplace(draw.layout->count - 1);
+    const shade::Targets& targets = *draw.layout->targets;
+    std::array<ColorFormat, kMaxColorTargets - 1> extra{};
+    for (uint32_t t = 1; t < targets.count; ++t)
+      extra[t - 1] = targets.target[t].format;
+    user_batch.emplace(draw.layout->function_varyings,
+                       std::span<const ColorFormat>(extra.data(), targets.count - 1));
   }
   // The storage tiles under the bin tile: one, or 2x2 for 128-pixel bin tiles.
   for (int32_t sy = by0 / kStorage * kStorage; sy <= by1; sy += kStorage) {
@@ -197,6 +204,8 @@ void raster_tile(const TileContext& draw, TriangleKernel kernel, PixelKernel pix
       tc.depth = fb.depth.data() + base;
       tc.rgba8 = fb.rgba8.empty() ? nullptr : fb.rgba8.data() + base * 4;
       tc.rgba32f = fb.rgba32f.empty() ? nullptr : fb.rgba32f.data() + base * 4;
+      for (uint32_t t = 0; t < fb.desc.extra_targets; ++t)
+        tc.extra[t] = fb.extra[t].data.data() + base * fb.extra[t].words;
       tc.hiz_min = fb.hiz_min.data() + size_t{storage_tile} * detail::kBlocksPerTile;
       tc.hiz_max = fb.hiz_max.data() + size_t{storage_tile} * detail::kBlocksPerTile;
       // A clear recorded since the tile was last drawn is written now, into cache, by the one

@@ -1,14 +1,19 @@
-// The user fragment shaders' back end in the fast engine (user_fragments.hpp). Scalar float
-// code compiled once, not per SIMD target: the varyings are the same bits on every target. A
-// value is its plane at the pixel, base + (gx x + gy y), divided by the 1/w plane there when
-// perspective-correct: the operations, in the order, of the built-in shaders
-// (shade/shade-inl.h).
+// The quad back end of the fast engine (user_fragments.hpp): user fragment shaders and
+// framebuffers with several colour targets. Compiled once, not per SIMD target: the values are
+// the same bits on every target. A varying is its plane at the pixel, base + (gx x + gy y),
+// divided by the 1/w plane there when perspective-correct: the operations, in the order, of the
+// built-in shaders (shade/shade-inl.h), which this file runs for the built-in targets at the
+// build's baseline target.
 #include "engine/src/fast/user_fragments.hpp"
+
+#include <hwy/highway.h>
 
 #include <algorithm>
 #include <bit>
 
+#include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
+#include "engine/src/shade/shade-inl.h"
 #include "engine/src/shade/user_batch.hpp"
 
 namespace tessera::fast {
@@ -22,14 +27,69 @@ struct QPlane {
   float at(float x, float y) const { return flat ? 1.0f : q0 + (q_dx * x + q_dy * y); }
 };
 
+namespace hn = hwy::HWY_NAMESPACE;
+
+// The built-in output `target` of the batch's `count` fragments, evaluated at offsets (fx, fy)
+// from the plane origin (beyond-horizon centres already moved to a sample), into the batch's
+// buffers for target `index`.
+void shade_target(const shade::TargetShading& target, uint32_t index, const shade::Targets& all,
+                  const TriangleSetup& t, const float* planes, const float* fx, const float* fy,
+                  uint32_t count, shade::UserBatch& batch) {
+  float* rgba = batch.target_color(index);
+  uint32_t* id = batch.target_id(index);
+  constexpr uint32_t kStride = shade::UserBatch::kStride;
+  if (target.output == TargetOutput::kPrimitiveId || target.output == TargetOutput::kObjectId) {
+    for (uint32_t i = 0; i < count; ++i) {
+      id[i] = target.output == TargetOutput::kObjectId ? all.object_id : batch.primitive(i);
+      const float value = static_cast<float>(id[i]);
+      rgba[i] = rgba[kStride + i] = rgba[2 * kStride + i] = value;
+      rgba[3 * kStride + i] = 1.0f;
+    }
+    return;
+  }
+  const hn::ScalableTag<float> df;
+  const size_t lanes = hn::Lanes(df);
+  const shade::HWY_NAMESPACE::FragmentPlanes p{t.q0, t.q_dx, t.q_dy, t.flat_q != 0,
+                                               planes + 3 * target.first};
+  // The points are final: no lane moves to a sample (covered is empty).
+  const auto none = [&](hn::Vec<decltype(df)>& ox, hn::Vec<decltype(df)>& oy) {
+    ox = hn::Zero(df);
+    oy = hn::Zero(df);
+  };
+  for (uint32_t i = 0; i < count; i += static_cast<uint32_t>(lanes)) {
+    const auto x = hn::LoadU(df, fx + i), y = hn::LoadU(df, fy + i);
+    auto r = hn::Zero(df), g = r, b = r, a = r;
+    const auto covered = hn::FirstN(df, 0);
+    switch (target.layout.shader) {
+      case shade::Shader::kNormalized:
+        shade::HWY_NAMESPACE::shade_fragments<shade::Shader::kNormalized>(
+            df, target.layout, p, x, y, covered, none, r, g, b, a);
+        break;
+      case shade::Shader::kPhong:
+        shade::HWY_NAMESPACE::shade_fragments<shade::Shader::kPhong>(df, target.layout, p, x, y,
+                                                                     covered, none, r, g, b, a);
+        break;
+      default:
+        shade::HWY_NAMESPACE::shade_fragments<shade::Shader::kInterpolated>(
+            df, target.layout, p, x, y, covered, none, r, g, b, a);
+        break;
+    }
+    hn::StoreU(r, df, rgba + i);
+    hn::StoreU(g, df, rgba + kStride + i);
+    hn::StoreU(b, df, rgba + 2 * kStride + i);
+    hn::StoreU(a, df, rgba + 3 * kStride + i);
+  }
+}
+
 }  // namespace
 
 void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float* planes,
                       int32_t bx, int32_t by, size_t block, const uint32_t* mask, const float* z) {
   const shade::Layout& layout = *tc.layout;
+  const shade::Targets& targets = *layout.targets;
   shade::UserBatch& batch = *tc.user_batch;
-  const uint32_t varyings = layout.count - 1;  // then the primitive index's bits
-  const uint32_t primitive = std::bit_cast<uint32_t>(planes[3 * varyings]);
+  const uint32_t varyings = layout.function_varyings;
+  const uint32_t primitive = std::bit_cast<uint32_t>(planes[3 * (layout.count - 1)]);
   const QPlane qp{t.q0, t.flat_q ? 0.0f : t.q_dx, t.flat_q ? 0.0f : t.q_dy, t.flat_q};
   // Offsets of the block's first pixel centre from the plane origin (pixel (x0, y0)'s centre).
   const float ox = static_cast<float>(bx * 8 - t.x0), oy = static_cast<float>(by * 8 - t.y0);
@@ -43,6 +103,10 @@ void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float
   static_assert(shade::UserBatch::kCapacity >= 64);
   batch.clear();
   uint8_t pixel[64];  // each fragment's pixel in the block
+  // Where each fragment's values are evaluated, for the built-in targets (kCapacity entries, so
+  // that whole lane groups load).
+  alignas(64) float fx[shade::UserBatch::kCapacity] = {};
+  alignas(64) float fy[shade::UserBatch::kCapacity] = {};
   for (uint32_t qy = 0; qy < 4; ++qy) {
     for (uint32_t qx = 0; qx < 4; ++qx) {
       uint32_t masks[4];
@@ -79,10 +143,14 @@ void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float
       const uint32_t l = static_cast<uint32_t>(live);
       for (uint32_t k = 0; k < 4; ++k) {
         const uint32_t from = copy[k] ? l : k;
+        fx[first + k] = px[from];
+        fy[first + k] = py[from];
+        if (varyings == 0) continue;
         const float inv_q = 1.0f / q[from];
         for (uint32_t j = 0; j < varyings; ++j)
           batch.set_value(j, first + k, value_at(j, px[from], py[from], inv_q));
       }
+      if (varyings == 0) continue;
       // Derivatives at the quad's centre, or where that lies beyond the horizon at the live
       // fragment's point: d(a / q)/dx = (a_x - (a / q) q_x) / q for a perspective-correct
       // value, the plane's gradient for an affine one, 0 for a flat one.
@@ -115,15 +183,30 @@ void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float
     }
   }
   if (batch.empty()) return;
-  batch.run(*layout.function);
+  if (layout.function != nullptr) {
+    batch.run(*layout.function);
+  } else {
+    batch.keep_all();
+  }
+  for (uint32_t k = 0; k < targets.count; ++k) {
+    if (!targets.target[k].from_function) {
+      shade_target(targets.target[k], k, targets, t, planes, fx, fy, batch.size(), batch);
+    }
+  }
 
+  constexpr uint32_t kStride = shade::UserBatch::kStride;
   bool wrote = false;
   for (uint32_t f = 0; f < batch.size(); ++f) {
     const uint32_t m = batch.mask(f);
     if (m == 0 || batch.discarded(f)) continue;
     const size_t i = pixel[f];
-    const float colour[4] = {batch.color(0, f), batch.color(1, f), batch.color(2, f),
-                             batch.color(3, f)};
+    const auto colour_of = [&](uint32_t k, float (&rgba)[4]) {
+      const float* c = batch.target_color(k);
+      for (uint32_t ch = 0; ch < 4; ++ch)
+        rgba[ch] = c[ch * kStride + f];
+    };
+    float colour[4];
+    colour_of(0, colour);
     uint8_t packed[4];
     for (uint32_t c = 0; c < 4; ++c)
       packed[c] = to_unorm8(colour[c]);
@@ -138,6 +221,22 @@ void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float
         std::copy_n(packed, 4, tc.rgba8 + at * 4);
       } else {
         std::copy_n(colour, 4, tc.rgba32f + at * 4);
+      }
+    }
+    for (uint32_t k = 1; k < targets.count; ++k) {
+      const ColorFormat format = targets.target[k].format;
+      const uint32_t words = detail::words_per_sample(format);
+      float rgba[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+      if (format == ColorFormat::kR32F) {
+        rgba[0] = batch.target_color(k)[f];
+      } else if (format != ColorFormat::kR32UI) {
+        colour_of(k, rgba);
+      }
+      const uint32_t id = format == ColorFormat::kR32UI ? batch.target_id(k)[f] : 0u;
+      for (uint32_t bits = m; bits != 0; bits &= bits - 1) {
+        const uint32_t s = static_cast<uint32_t>(std::countr_zero(bits));
+        const size_t at = block * 64 + s * kSamplePlane + i;
+        detail::store_target_value(format, tc.extra[k - 1] + at * words, rgba, id);
       }
     }
   }

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -73,29 +74,43 @@ bool inside_edge(int64_t e, bool top_left) {
   return e > 0 || (e == 0 && top_left);
 }
 
+// What colour target t receives.
+TargetOutput output_of(const PipelineState& pipeline, uint32_t t) {
+  return t == 0 ? pipeline.output : pipeline.extra_outputs[t - 1];
+}
+
 // What a draw's fragments are made of: every value a clipped vertex carries (the varyings,
-// then with TargetOutput::kBarycentrics the three barycentric carriers), each one's
+// then with a TargetOutput::kBarycentrics target the three barycentric carriers), each one's
 // interpolation resolved, and the first vertex's values for the flat ones.
 struct FragmentInputs {
   uint32_t varyings = 0;                           // the draw's attribute_count
   uint32_t values = 0;                             // varyings plus the carriers
   std::array<VaryingMode, kMaxClipValues> mode{};  // kPerspective, kAffine or kFlat
   bool needs_q = false;                            // a perspective value or the eye depth is read
-  bool user = false;  // a user fragment function shades the draw (FragmentShader::kUser)
+  bool user = false;     // a user fragment function shades a target (FragmentShader::kUser)
+  uint32_t targets = 1;  // colour targets
 };
 
-FragmentInputs fragment_inputs(const PipelineState& pipeline, uint32_t attribute_count) {
+FragmentInputs fragment_inputs(const PipelineState& pipeline, uint32_t attribute_count,
+                               const FramebufferDesc& desc) {
   FragmentInputs f;
   f.varyings = attribute_count;
-  f.values = attribute_count + (pipeline.output == TargetOutput::kBarycentrics ? 3 : 0);
+  f.targets = 1 + desc.extra_targets;
+  bool barycentrics = false, eye_depth = false;
+  for (uint32_t t = 0; t < f.targets; ++t) {
+    const TargetOutput output = output_of(pipeline, t);
+    barycentrics = barycentrics || output == TargetOutput::kBarycentrics;
+    eye_depth = eye_depth || output == TargetOutput::kEyeDepth;
+    f.user = f.user || (pipeline.color_write && output == TargetOutput::kColor &&
+                        pipeline.shader == FragmentShader::kUser);
+  }
+  f.values = attribute_count + (barycentrics ? 3 : 0);
   for (uint32_t i = 0; i < f.values; ++i) {
     // The barycentric carriers after the varyings are perspective-correct.
     f.mode[i] = i < attribute_count ? resolved_mode(pipeline, i) : VaryingMode::kPerspective;
     f.needs_q = f.needs_q || f.mode[i] == VaryingMode::kPerspective;
   }
-  f.needs_q = f.needs_q || pipeline.output == TargetOutput::kEyeDepth;
-  f.user = pipeline.color_write && pipeline.output == TargetOutput::kColor &&
-           pipeline.shader == FragmentShader::kUser;
+  f.needs_q = f.needs_q || eye_depth;
   return f;
 }
 
@@ -179,8 +194,10 @@ bool derivatives(const std::array<WindowVertex, 3>& v, int64_t area, uint32_t bi
   return true;
 }
 
-// The fragment's RGBA: the shader's colour, or a vision output (shade.hpp's rules).
-std::array<float, 4> shade(const PipelineState& pipeline, const FragmentInputs& in,
+// The fragment's RGBA for `output`: the shader's colour, or a vision output (shade.hpp's
+// rules).
+std::array<float, 4> shade(const PipelineState& pipeline, TargetOutput output,
+                           const FragmentInputs& in,
                            const std::array<double, kMaxClipValues>& value, double w,
                            uint32_t primitive) {
   const auto group = [&](uint32_t first) {
@@ -194,7 +211,7 @@ std::array<float, 4> shade(const PipelineState& pipeline, const FragmentInputs& 
     return std::array<float, 4>{static_cast<float>(x[0]), static_cast<float>(x[1]),
                                 static_cast<float>(x[2]), 1.0f};
   };
-  switch (pipeline.output) {
+  switch (output) {
     case TargetOutput::kColor:
       break;
     case TargetOutput::kEyeDepth:
@@ -225,13 +242,41 @@ std::array<float, 4> shade(const PipelineState& pipeline, const FragmentInputs& 
   return out;
 }
 
-void write_color(detail::FramebufferStorage& fb, size_t index, const std::array<float, 4>& color) {
+// What a fragment writes to each colour target: RGBA (R32F: R) and an R32UI target's integer.
+struct TargetValues {
+  std::array<std::array<float, 4>, kMaxColorTargets> rgba{};
+  std::array<uint32_t, kMaxColorTargets> id{};
+};
+
+// The targets' values a fragment with `value` (and clip w `w`) of triangle `primitive` takes from
+// the built-in shaders and outputs; those a user function feeds are left to it.
+TargetValues built_in_values(const PipelineState& pipeline, const FragmentInputs& in,
+                             const std::array<double, kMaxClipValues>& value, double w,
+                             uint32_t primitive) {
+  TargetValues out;
+  for (uint32_t t = 0; t < in.targets; ++t) {
+    const TargetOutput output = output_of(pipeline, t);
+    if (output == TargetOutput::kColor && pipeline.shader == FragmentShader::kUser) continue;
+    out.rgba[t] = shade(pipeline, output, in, value, w, primitive);
+    out.id[t] = output == TargetOutput::kObjectId ? pipeline.object_id : primitive;
+  }
+  return out;
+}
+
+// Writes the first `targets` colour targets of sample `index`.
+void write_targets(detail::FramebufferStorage& fb, size_t index, const TargetValues& v,
+                   uint32_t targets) {
   if (fb.desc.color_format == ColorFormat::kRGBA8) {
     for (int c = 0; c < 4; ++c)
-      fb.rgba8[index * 4 + c] = to_unorm8(color[c]);
+      fb.rgba8[index * 4 + c] = to_unorm8(v.rgba[0][c]);
   } else {
     for (int c = 0; c < 4; ++c)
-      fb.rgba32f[index * 4 + c] = color[c];
+      fb.rgba32f[index * 4 + c] = v.rgba[0][c];
+  }
+  for (uint32_t e = 0; e + 1 < targets; ++e) {
+    detail::ExtraTarget& target = fb.extra[e];
+    detail::store_target_value(target.format, target.data.data() + index * target.words,
+                               v.rgba[e + 1].data(), v.id[e + 1]);
   }
 }
 
@@ -243,23 +288,36 @@ struct UserFragment {
   std::array<float, 16> depth{};
 };
 
+// A drawn fragment of a batch and the values its built-in targets take.
+struct UserSlot {
+  const UserFragment* fragment = nullptr;
+  TargetValues values;
+};
+
 // Runs the batch and writes the fragments it keeps.
 void flush_user_batch(detail::FramebufferStorage& fb, const PipelineState& pipeline,
-                      shade::UserBatch& batch, const std::vector<const UserFragment*>& slots) {
+                      const FragmentInputs& inputs, shade::UserBatch& batch,
+                      const std::vector<UserSlot>& slots) {
   if (batch.empty()) return;
   batch.run(pipeline.fragment_function);
   const bool write_depth = pipeline.depth_test && pipeline.depth_write;
+  constexpr uint32_t kStride = shade::UserBatch::kStride;
   for (uint32_t f = 0; f < batch.size(); ++f) {
-    const UserFragment* fragment = slots[f];
+    const UserFragment* fragment = slots[f].fragment;
     if (fragment == nullptr || batch.discarded(f)) continue;
-    const std::array<float, 4> color = {batch.color(0, f), batch.color(1, f), batch.color(2, f),
-                                        batch.color(3, f)};
+    TargetValues values = slots[f].values;
+    for (uint32_t t = 0; t < inputs.targets; ++t) {
+      if (output_of(pipeline, t) != TargetOutput::kColor) continue;
+      for (uint32_t c = 0; c < 4; ++c)
+        values.rgba[t][c] = batch.target_color(t)[c * kStride + f];
+      values.id[t] = batch.target_id(t)[f];
+    }
     for (uint32_t s = 0; s < fb.desc.samples; ++s) {
       if (!(fragment->mask & (1u << s))) continue;
       const size_t index = fb.sample_index(static_cast<uint32_t>(fragment->px),
                                            static_cast<uint32_t>(fragment->py), s);
       if (write_depth) fb.depth[index] = fragment->depth[s];
-      write_color(fb, index, color);
+      write_targets(fb, index, values, inputs.targets);
     }
   }
   batch.clear();
@@ -281,10 +339,10 @@ void shade_user_fragments(detail::FramebufferStorage& fb, const PipelineState& p
   std::map<std::pair<int64_t, int64_t>, std::array<const UserFragment*, 4>> quads;
   for (const UserFragment& f : fragments)
     quads[{f.py >> 1, f.px >> 1}][(f.py & 1) * 2 + (f.px & 1)] = &f;
-  std::vector<const UserFragment*> slots;
+  std::vector<UserSlot> slots;
   for (const auto& [key, quad] : quads) {
     if (batch.full()) {
-      flush_user_batch(fb, pipeline, batch, slots);
+      flush_user_batch(fb, pipeline, inputs, batch, slots);
       slots.clear();
     }
     const int64_t qx = key.second * 2, qy = key.first * 2;
@@ -299,29 +357,38 @@ void shade_user_fragments(detail::FramebufferStorage& fb, const PipelineState& p
     std::array<std::array<double, kMaxClipValues>, 4> values;
     std::array<int64_t, 4> at_x{}, at_y{};  // where each fragment was evaluated
     std::array<bool, 4> evaluated{};
-    double w = 1.0;
+    std::array<double, 4> w{1.0, 1.0, 1.0, 1.0};
     const auto evaluate = [&](int k) {
       const int64_t px = qx + (k & 1), py = qy + (k >> 1);
       at_x[k] = (px * 16 + 8) << shift;
       at_y[k] = (py * 16 + 8) << shift;
-      evaluated[k] = interpolate(v, area, at_x[k], at_y[k], inputs, flat, values[k], w);
+      evaluated[k] = interpolate(v, area, at_x[k], at_y[k], inputs, flat, values[k], w[k]);
       if (evaluated[k] || masks[k] == 0) return;
       const auto& o = pattern[std::countr_zero(masks[k])];
       at_x[k] = (px * 16 + 8 + o.dx) << shift;
       at_y[k] = (py * 16 + 8 + o.dy) << shift;
-      evaluated[k] = interpolate(v, area, at_x[k], at_y[k], inputs, flat, values[k], w);
+      evaluated[k] = interpolate(v, area, at_x[k], at_y[k], inputs, flat, values[k], w[k]);
     };
     evaluate(live);
     for (int k = 0; k < 4; ++k) {
       if (k != live) evaluate(k);
-      if (!evaluated[k]) values[k] = values[live];
+      if (!evaluated[k]) {
+        values[k] = values[live];
+        w[k] = w[live];
+      }
       for (uint32_t j = 0; j < inputs.varyings; ++j)
         batch.set_value(j, first + static_cast<uint32_t>(k), static_cast<float>(values[k][j]));
-      slots.push_back(quad[k] && masks[k] != 0 ? quad[k] : nullptr);
+      UserSlot slot;
+      if (quad[k] && masks[k] != 0) {
+        slot.fragment = quad[k];
+        slot.values = built_in_values(pipeline, inputs, values[k], w[k], primitive);
+      }
+      slots.push_back(slot);
     }
     std::array<double, kMaxClipValues> centre, ddx, ddy;
     const int64_t cx = (qx * 16 + 16) << shift, cy = (qy * 16 + 16) << shift;
-    if (!interpolate(v, area, cx, cy, inputs, flat, centre, w) ||
+    double centre_w = 1.0;
+    if (!interpolate(v, area, cx, cy, inputs, flat, centre, centre_w) ||
         !derivatives(v, area, bits, cx, cy, inputs, centre, ddx, ddy)) {
       derivatives(v, area, bits, at_x[live], at_y[live], inputs, values[live], ddx, ddy);
     }
@@ -329,7 +396,7 @@ void shade_user_fragments(detail::FramebufferStorage& fb, const PipelineState& p
       batch.set_derivatives(j, first, static_cast<float>(ddx[j]), static_cast<float>(ddy[j]));
     }
   }
-  flush_user_batch(fb, pipeline, batch, slots);
+  flush_user_batch(fb, pipeline, inputs, batch, slots);
 }
 
 // One triangle (a piece of draw triangle `primitive`, whose first vertex's values are
@@ -437,11 +504,12 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
         interpolate(v, area, (px * 16 + 8 + o.dx) << shift, (py * 16 + 8 + o.dy) << shift, inputs,
                     flat, values, w);
       }
-      const std::array<float, 4> color = shade(pipeline, inputs, values, w, primitive);
+      const TargetValues target_values = built_in_values(pipeline, inputs, values, w, primitive);
       for (uint32_t s = 0; s < samples; ++s) {
         if (passed[s]) {
-          write_color(fb, fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s),
-                      color);
+          write_targets(fb,
+                        fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s),
+                        target_values, inputs.targets);
         }
       }
     }
@@ -454,14 +522,19 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
 }  // namespace
 
 void draw(detail::FramebufferStorage& fb, const PipelineState& pipeline, const DrawInput& input,
-          Counters& counters, std::span<const uint32_t> primitive_ids) {
+          Counters& counters, std::span<const uint32_t> primitive_ids, bool all_targets) {
   const bool indexed = !input.indices.empty();
   const size_t triangles = (indexed ? input.indices.size() : input.positions.size()) / 3;
   const uint32_t attribute_count = input.attribute_count;
-  const FragmentInputs inputs = fragment_inputs(pipeline, attribute_count);
+  FramebufferDesc shaded = fb.desc;  // the targets this draw writes
+  if (!all_targets) shaded.extra_targets = 0;
+  const FragmentInputs inputs = fragment_inputs(pipeline, attribute_count, shaded);
   const GuardBand guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
   std::optional<shade::UserBatch> batch;
-  if (inputs.user) batch.emplace(attribute_count);
+  if (inputs.user) {
+    batch.emplace(attribute_count,
+                  std::span<const ColorFormat>(shaded.extra_formats.data(), shaded.extra_targets));
+  }
 
   for (size_t t = 0; t < triangles; ++t) {
     ++counters.triangles_submitted;

@@ -20,9 +20,12 @@ std::array<float, 3> unit(double x, double y, double z) {
 
 }  // namespace
 
-Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count) {
+// The layout of one output for a single colour target; with `own_planes` false (the quad back
+// end's targets), the plain Gouraud colour is made of interpolants too rather than left to the
+// setup's colour planes.
+Layout single_layout(const PipelineState& pipeline, TargetOutput output, uint32_t attribute_count,
+                     bool own_planes) {
   Layout layout;
-  if (!pipeline.color_write) return layout;
   const auto add = [&](Source source, uint32_t index, VaryingMode mode) {
     layout.values[layout.count++] = {source, index, mode};
     layout.needs_q = layout.needs_q || mode == VaryingMode::kPerspective;
@@ -39,7 +42,7 @@ Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count) {
   constexpr uint8_t k = Layout::kConstant;
   const uint32_t color = pipeline.roles.color;
   const uint32_t color_count = attribute_count > color ? std::min(attribute_count - color, 4u) : 0u;
-  switch (pipeline.output) {
+  switch (output) {
     case TargetOutput::kEyeDepth:
       add(Source::kClipW, 0, VaryingMode::kPerspective);
       channels({0, 0, 0, k}, {0, 0, 0, 1});
@@ -68,13 +71,6 @@ Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count) {
     }
     case TargetOutput::kColor:
       break;
-  }
-  if (pipeline.shader == FragmentShader::kUser) {
-    layout.shader = Shader::kUser;
-    add_varyings(0, attribute_count);
-    add(Source::kPrimitiveBits, 0, VaryingMode::kFlat);
-    layout.function = &pipeline.fragment_function;
-    return layout;
   }
   if (pipeline.shader == FragmentShader::kPhong) {
     layout.shader = Shader::kPhong;
@@ -108,12 +104,60 @@ Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count) {
   bool uniform = true;
   for (uint32_t c = color; c < color + color_count; ++c)
     uniform = uniform && resolved_mode(pipeline, c) == default_mode(pipeline.interpolation);
-  if (uniform) return layout;
+  if (uniform && own_planes) return layout;
   add_varyings(color, color_count);
   std::array<uint8_t, 4> channel{k, k, k, k};
   for (uint32_t c = 0; c < color_count; ++c)
     channel[c] = static_cast<uint8_t>(c);
   channels(channel, {0, 0, 0, 1});
+  return layout;
+}
+
+Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count,
+                  const FramebufferDesc& desc) {
+  if (!pipeline.color_write) return {};
+  const bool user = pipeline.shader == FragmentShader::kUser;
+  if (desc.extra_targets == 0 && !(user && pipeline.output == TargetOutput::kColor)) {
+    return single_layout(pipeline, pipeline.output, attribute_count, true);
+  }
+  // The quad back end: the function's varyings, then each built-in target's interpolants, then
+  // the primitive index's bits.
+  Layout layout;
+  layout.shader = Shader::kUser;
+  auto targets = std::make_shared<Targets>();
+  targets->count = 1 + desc.extra_targets;
+  targets->object_id = pipeline.object_id;
+  bool function = false;
+  for (uint32_t t = 0; t < targets->count; ++t) {
+    TargetShading& target = targets->target[t];
+    target.output = t == 0 ? pipeline.output : pipeline.extra_outputs[t - 1];
+    target.format = t == 0 ? desc.color_format : desc.extra_formats[t - 1];
+    target.from_function = user && target.output == TargetOutput::kColor;
+    function = function || target.from_function;
+  }
+  const auto add = [&](const Interpolant& value) {
+    layout.values[layout.count++] = value;
+    layout.needs_q = layout.needs_q || value.mode == VaryingMode::kPerspective;
+  };
+  if (function) {
+    for (uint32_t i = 0; i < attribute_count; ++i)
+      add({Source::kVarying, i, resolved_mode(pipeline, i)});
+    layout.function = &pipeline.fragment_function;
+    layout.function_varyings = attribute_count;
+  }
+  for (uint32_t t = 0; t < targets->count; ++t) {
+    TargetShading& target = targets->target[t];
+    if (target.from_function || target.output == TargetOutput::kPrimitiveId ||
+        target.output == TargetOutput::kObjectId) {
+      continue;
+    }
+    target.layout = single_layout(pipeline, target.output, attribute_count, false);
+    target.first = layout.count;
+    for (uint32_t j = 0; j < target.layout.count; ++j)
+      add(target.layout.values[j]);
+  }
+  add({Source::kPrimitiveBits, 0, VaryingMode::kFlat});
+  layout.targets = std::move(targets);
   return layout;
 }
 

@@ -9,7 +9,9 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 
+#include "tessera/framebuffer.hpp"
 #include "tessera/pipeline.hpp"
 
 namespace tessera::shade {
@@ -20,8 +22,8 @@ enum class Shader : uint8_t {
   kInterpolated,  // each RGBA channel an interpolant or a constant
   kNormalized,    // interpolants 0..2 normalized, as RGB (A = 1): TargetOutput::kNormal
   kPhong,         // per-pixel Phong (PhongState) of the normal and position interpolants
-  kUser,          // the pipeline's FragmentFunction on batches (user_batch.hpp): every varying,
-                  // then the primitive index
+  kUser,          // the quad back end (user_batch.hpp), for a user FragmentFunction and for
+                  // framebuffers with several colour targets (Layout::targets)
 };
 inline constexpr int kShaders = 5;
 
@@ -41,8 +43,11 @@ struct Interpolant {
   VaryingMode mode = VaryingMode::kPerspective;  // never kDefault
 };
 
-// A user shader reads every varying and the primitive index; the built-in ones at most 10.
-inline constexpr uint32_t kMaxInterpolants = kMaxVaryings + 1;
+// A user shader reads every varying and the primitive index; a built-in shader at most 10, a
+// vision output at most 3; several colour targets each their own (kUser: Layout::targets).
+inline constexpr uint32_t kMaxInterpolants = kMaxVaryings + 1 + 3 * kMaxColorTargets;
+
+struct Targets;
 
 // A light as the Phong policy reads it: directions normalized and negated where the model
 // needs them, in double and then rounded to float, as the reference normalizes them.
@@ -74,13 +79,36 @@ struct Layout {
   bool has_color = false;
   PhongState phong{};  // the draw's material (phong.lights unused: see lights)
   std::array<PreparedLight, kMaxLights> lights{};
-  // kUser: the pipeline's function (valid for the draw).
+  // kUser: the pipeline's function (valid for the draw) where a target takes its values, which
+  // then reads interpolants 0..function_varyings - 1 (the draw's varyings); each colour target's
+  // shading; and the last interpolant, the primitive index's bits.
   const FragmentFunction* function = nullptr;
+  uint32_t function_varyings = 0;
+  std::shared_ptr<const Targets> targets;
 };
 
-// The layout of a draw with `attribute_count` varyings under `pipeline`'s shading state:
-// Shader::kGouraud (and nothing else set) for the plain Gouraud colour, and for draws that
-// write no colour, whose fragments have no values.
-Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count);
+// How the quad back end fills one colour target.
+struct TargetShading {
+  ColorFormat format = ColorFormat::kRGBA8;
+  TargetOutput output = TargetOutput::kColor;
+  bool from_function = false;  // the user function's values
+  // Otherwise kPrimitiveId and kObjectId come from the fragment's IDs, and the other outputs
+  // from `layout` (kInterpolated, kNormalized or kPhong), whose interpolants are the draw's
+  // from `first` on.
+  uint32_t first = 0;
+  Layout layout;
+};
+
+struct Targets {
+  uint32_t count = 1;
+  std::array<TargetShading, kMaxColorTargets> target{};
+  uint32_t object_id = 0;
+};
+
+// The layout of a draw with `attribute_count` varyings under `pipeline`'s shading state into a
+// framebuffer of `desc`: Shader::kGouraud (and nothing else set) for the plain Gouraud colour,
+// and for draws that write no colour, whose fragments have no values.
+Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count,
+                  const FramebufferDesc& desc);
 
 }  // namespace tessera::shade

@@ -5,8 +5,12 @@
 
 namespace tessera::shade {
 
-UserBatch::UserBatch(uint32_t varying_count)
-    : varying_count_(varying_count), buffers_(std::make_unique<Buffers>()) {}
+UserBatch::UserBatch(uint32_t varying_count, std::span<const ColorFormat> extra_formats)
+    : varying_count_(varying_count),
+      extra_count_(static_cast<uint32_t>(extra_formats.size())),
+      buffers_(std::make_unique<Buffers>()) {
+  std::copy(extra_formats.begin(), extra_formats.end(), extra_formats_.begin());
+}
 
 uint32_t UserBatch::add_quad(uint32_t px, uint32_t py, uint32_t primitive,
                              const uint32_t (&masks)[4]) {
@@ -28,9 +32,13 @@ void UserBatch::set_derivatives(uint32_t v, uint32_t i, float ddx, float ddy) {
   std::fill_n(buffers_->ddy + v * kStride + i, 4, ddy);
 }
 
+void UserBatch::keep_all() {
+  std::fill_n(buffers_->discard, count_, uint8_t{0});
+}
+
 void UserBatch::run(const FragmentFunction& function) {
   Buffers& b = *buffers_;
-  std::fill_n(b.discard, count_, uint8_t{0});
+  keep_all();
   FragmentBatch batch;
   batch.count = count_;
   batch.varying_count = varying_count_;
@@ -42,8 +50,15 @@ void UserBatch::run(const FragmentFunction& function) {
   batch.ddx = b.ddx;
   batch.ddy = b.ddy;
   FragmentOutput output;
-  output.color = b.color;
+  output.color = b.color[0];
   output.discard = b.discard;
+  for (uint32_t t = 0; t < extra_count_; ++t) {
+    if (extra_formats_[t] == ColorFormat::kR32UI) {
+      output.extra_uint[t] = b.id[t + 1];
+    } else {
+      output.extra[t] = b.color[t + 1];
+    }
+  }
   function(batch, output);
 }
 
