@@ -58,7 +58,20 @@ struct Options {
   std::vector<float> clear{0.08f, 0.09f, 0.11f, 1.0f};
   std::string shading;              // empty: phong for meshes and the demo, gouraud otherwise
   std::vector<std::string> lights;  // "x,y,z" each
+  std::vector<std::string> aovs;    // "kind=path" each: extra render targets
 };
+
+// An extra render target written from the same pass as the colour (--aov kind=path).
+struct Aov {
+  std::string kind;
+  std::string path;
+  tessera::TargetOutput output;
+  tessera::ColorFormat format;
+  uint32_t channels;  // written to the file
+};
+
+// "No triangle" in an ids target (every index of a draw is below it).
+constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
 
 glm::vec3 vec3_of(const std::vector<float>& v) {
   return {v[0], v[1], v[2]};
@@ -209,6 +222,47 @@ bool has_extension(const std::string& path, const char* ext) {
   std::string e = std::filesystem::path(path).extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
   return e == ext;
+}
+
+std::vector<Aov> parse_aovs(const std::vector<std::string>& specs) {
+  using tessera::ColorFormat;
+  using tessera::TargetOutput;
+  if (specs.size() > tessera::kMaxColorTargets - 1) {
+    bad_argument("--aov: at most " + std::to_string(tessera::kMaxColorTargets - 1) +
+                 " extra targets, " + std::to_string(specs.size()) + " given");
+  }
+  std::vector<Aov> aovs;
+  for (const std::string& spec : specs) {
+    const size_t eq = spec.find('=');
+    if (eq == std::string::npos || eq + 1 == spec.size()) {
+      bad_argument("--aov: " + spec + " is not kind=path (for example normals=normals.exr)");
+    }
+    Aov a;
+    a.kind = spec.substr(0, eq);
+    a.path = spec.substr(eq + 1);
+    if (a.kind == "normals") {
+      a.output = TargetOutput::kNormal, a.format = ColorFormat::kRGBA32F, a.channels = 3;
+    } else if (a.kind == "positions") {
+      a.output = TargetOutput::kPosition, a.format = ColorFormat::kRGBA32F, a.channels = 3;
+    } else if (a.kind == "barycentrics") {
+      a.output = TargetOutput::kBarycentrics, a.format = ColorFormat::kRGBA32F, a.channels = 3;
+    } else if (a.kind == "depth") {
+      a.output = TargetOutput::kEyeDepth, a.format = ColorFormat::kR32F, a.channels = 1;
+    } else if (a.kind == "ids") {
+      a.output = TargetOutput::kPrimitiveId, a.format = ColorFormat::kR32UI, a.channels = 1;
+    } else if (a.kind == "objects") {
+      a.output = TargetOutput::kObjectId, a.format = ColorFormat::kR32UI, a.channels = 1;
+    } else {
+      bad_argument("--aov: " + a.kind +
+                   " is not one of normals, positions, barycentrics, depth, ids, objects");
+    }
+    if (!has_extension(a.path, ".exr")) {
+      bad_argument("--aov " + a.kind + ": " + a.path + " is not an .exr file");
+    }
+    check_output_directory("--aov", a.path);
+    aovs.push_back(a);
+  }
+  return aovs;
 }
 
 // --shading and --light. A capture's varyings follow TRI2's layout (tessera/capture.hpp):
@@ -364,13 +418,24 @@ int run(const Options& o, const CLI::App& app) {
                                       : tessera::CullMode::kNone;
 
   apply_shading(o, is_capture, job, pipeline);
+  const std::vector<Aov> aovs = parse_aovs(o.aovs);
+  if (!aovs.empty() && job.mode != Mode::kTriangles) {
+    bad_argument("--aov: not with --wireframe or --points (they draw the colour only)");
+  }
   const bool float_color = o.float_color || has_extension(o.output, ".exr");
-  tessera::Framebuffer fb(
-      {width, height, o.samples,
-       float_color ? tessera::ColorFormat::kRGBA32F : tessera::ColorFormat::kRGBA8,
-       o.depth_format == "unorm16"   ? tessera::DepthFormat::kUnorm16
-       : o.depth_format == "unorm24" ? tessera::DepthFormat::kUnorm24
-                                     : tessera::DepthFormat::kFloat32});
+  tessera::FramebufferDesc desc{
+      width, height, o.samples,
+      float_color ? tessera::ColorFormat::kRGBA32F : tessera::ColorFormat::kRGBA8,
+      o.depth_format == "unorm16"   ? tessera::DepthFormat::kUnorm16
+      : o.depth_format == "unorm24" ? tessera::DepthFormat::kUnorm24
+                                    : tessera::DepthFormat::kFloat32};
+  desc.extra_targets = static_cast<uint32_t>(aovs.size());
+  for (size_t i = 0; i < aovs.size(); ++i) {
+    desc.extra_formats[i] = aovs[i].format;
+    pipeline.extra_outputs[i] = aovs[i].output;
+  }
+  if (is_capture) pipeline.object_id = 1;
+  tessera::Framebuffer fb(desc);
   tessera::RendererOptions renderer_options;
   renderer_options.threads = o.threads;
   renderer_options.raster_counters = !o.no_counters;
@@ -394,6 +459,17 @@ int run(const Options& o, const CLI::App& app) {
     const auto t0 = Clock::now();
     fb.clear_color(clear);
     fb.clear_depth(o.reversed_z ? 0.0f : 1.0f);
+    // The extra targets start at zero: no normal, position, depth or object; no triangle is
+    // kNoTriangle.
+    for (uint32_t t = 1; t < fb.target_count(); ++t) {
+      if (aovs[t - 1].output == tessera::TargetOutput::kPrimitiveId) {
+        fb.clear_target_uint(t, kNoTriangle);
+      } else if (aovs[t - 1].format == tessera::ColorFormat::kR32UI) {
+        fb.clear_target_uint(t, 0);
+      } else {
+        fb.clear_target(t, {0, 0, 0, 0});
+      }
+    }
     draw_job(renderer, fb, pipeline, job);
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   };
@@ -421,6 +497,21 @@ int run(const Options& o, const CLI::App& app) {
   if (!o.depth_output.empty()) {
     const std::vector<float> depth = fb.read_depth();
     tessera::write_image(o.depth_output, width, height, 1, std::span<const float>(depth));
+  }
+  for (uint32_t t = 1; t < fb.target_count(); ++t) {
+    const Aov& a = aovs[t - 1];
+    if (a.format == tessera::ColorFormat::kR32UI) {
+      const std::vector<uint32_t> ids = fb.read_target_uint(t);
+      tessera::write_image(a.path, width, height, 1, std::span<const uint32_t>(ids));
+      continue;
+    }
+    std::vector<float> values = fb.read_target(t);
+    if (a.channels == 3) {  // RGB of RGBA
+      for (size_t p = 0; p < size_t{width} * height; ++p)
+        std::copy_n(&values[p * 4], 3, &values[p * 3]);
+      values.resize(size_t{width} * height * 3);
+    }
+    tessera::write_image(a.path, width, height, a.channels, std::span<const float>(values));
   }
 
   const tessera::Counters& c = renderer.counters();
@@ -459,8 +550,11 @@ int run(const Options& o, const CLI::App& app) {
     std::printf("frames=%u median_ms=%.3f min_ms=%.3f max_ms=%.3f mtri_s=%.3f\n", frames, median,
                 sorted.front(), sorted.back(), mtri_s);
   }
-  std::printf("wrote %s%s%s\n", o.output.c_str(), o.depth_output.empty() ? "" : " and ",
-              o.depth_output.c_str());
+  std::string wrote = o.output;
+  if (!o.depth_output.empty()) wrote += ", " + o.depth_output;
+  for (const Aov& a : aovs)
+    wrote += ", " + a.path;
+  std::printf("wrote %s\n", wrote.c_str());
   return 0;
 }
 
@@ -560,6 +654,12 @@ int main(int argc, char** argv) {
   app.add_option("--light", o.lights,
                  "--shading phong: a point light at x,y,z (eye space for captures, world space "
                  "for meshes); repeatable, up to 8")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  app.add_option("--aov", o.aovs,
+                 "also write kind=path.exr from the same pass, an extra render target: normals, "
+                 "positions, barycentrics (RGB), depth (eye), ids (triangle index, 4294967295 "
+                 "where none), objects (object ID, 0 where none); repeatable, up to 3")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app.add_option("--clear", o.clear, "clear colour r,g,b,a")->delimiter(',')->expected(4);

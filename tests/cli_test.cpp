@@ -15,6 +15,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tessera/io.hpp"
@@ -483,6 +484,116 @@ TEST(Cli, UnwritableOutputPathIsRejectedNamingIt) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
   EXPECT_NE(r.err.find("such.png"), std::string::npos) << r.err;
+}
+
+// --aov writes extra render targets from the colour's pass: each holds what --shading of that
+// output writes alone, IDs exactly, "none" where nothing was drawn.
+TEST(Cli, AovsWriteTheVisionOutputsOfTheColoursPass) {
+  TempDir dir;
+  const std::string size = "--width 96 --height 64 --samples 1 ";
+  const RunResult r = run_render(
+      dir, size + "-o " + quoted(dir / "colour.png") + " --aov normals=" + quoted(dir / "n.exr") +
+               " --aov depth=" + quoted(dir / "d.exr") + " --aov objects=" + quoted(dir / "o.exr"));
+  ASSERT_TRUE(r.exited);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("o.exr"), std::string::npos) << r.out;
+  const auto alone = [&](const std::string& shading, const std::string& name) {
+    const RunResult one =
+        run_render(dir, size + "--shading " + shading + " -o " + quoted(dir / name));
+    EXPECT_EQ(one.exit_code, 0) << one.err;
+    return read_image(dir / name);
+  };
+  const Image colour = read_image(dir / "colour.png");
+  const Image colour_alone = [&] {
+    run_render(dir, size + "-o " + quoted(dir / "c1.png"));
+    return read_image(dir / "c1.png");
+  }();
+  const Image normals = read_image(dir / "n.exr"), normals_alone = alone("normals", "n1.exr");
+  const Image depth = read_image(dir / "d.exr"), depth_alone = alone("depth", "d1.exr");
+  const Image objects = read_image(dir / "o.exr"), objects_alone = alone("objects", "o1.exr");
+  // OpenImageIO reads 32-bit unsigned channels as value / (2^32 - 1).
+  const auto id_at = [](const Image& image, size_t i) {
+    return static_cast<float>(std::llround(double{image.pixels[i]} * 4294967295.0));
+  };
+  ASSERT_EQ(normals.channels, 3u);
+  ASSERT_EQ(depth.channels, 1u);
+  ASSERT_EQ(objects.channels, 1u);
+  ASSERT_EQ(objects.pixels.size(), size_t{96 * 64});
+  size_t background = 0;
+  std::vector<int> seen(8, 0);
+  for (uint32_t y = 0; y < 64; ++y) {
+    for (uint32_t x = 0; x < 96; ++x) {
+      const float id = id_at(objects, size_t{y} * 96 + x);
+      ASSERT_EQ(id, objects_alone.at(x, y)[0]) << x << "," << y;
+      ASSERT_EQ(id, std::floor(id));
+      ASSERT_GE(id, 0.0f);
+      ASSERT_LT(id, 8.0f);
+      seen[static_cast<size_t>(id)] = 1;
+      background += id == 0;
+      ASSERT_LE(std::abs(depth.at(x, y)[0] - depth_alone.at(x, y)[0]),
+                2e-6f * depth_alone.at(x, y)[0])
+          << x << "," << y;
+      ASSERT_EQ(id == 0, depth.at(x, y)[0] == 0.0f) << x << "," << y;
+      for (uint32_t c = 0; c < 3; ++c) {
+        ASSERT_LE(std::abs(normals.at(x, y)[c] - normals_alone.at(x, y)[c]), 2e-6f)
+            << x << "," << y;
+        ASSERT_LE(std::abs(colour.at(x, y)[c] - colour_alone.at(x, y)[c]), 1.0f / 255 + 1e-6f)
+            << x << "," << y;
+      }
+    }
+  }
+  EXPECT_GT(background, 0u);
+  EXPECT_GE(std::count(seen.begin() + 1, seen.end(), 1), 3);  // several objects in view
+
+  // Triangle indices: exact integers, 4294967295 where no triangle was drawn.
+  const RunResult ids =
+      run_render(dir, size + "-o " + quoted(dir / "c.png") + " --aov ids=" + quoted(dir / "i.exr") +
+                          " --aov objects=" + quoted(dir / "o2.exr"));
+  ASSERT_EQ(ids.exit_code, 0) << ids.err;
+  const Image triangles = read_image(dir / "i.exr"), objects2 = read_image(dir / "o2.exr");
+  ASSERT_EQ(triangles.pixels.size(), objects2.pixels.size());
+  size_t drawn = 0;
+  for (size_t i = 0; i < triangles.pixels.size(); ++i) {
+    const float t = id_at(triangles, i);
+    ASSERT_EQ(id_at(objects2, i) == 0, t == 4294967295.0f) << i;
+    if (id_at(objects2, i) != 0) {
+      ASSERT_LT(t, 49920.0f) << i;
+    }
+    drawn += id_at(objects2, i) != 0;
+  }
+  EXPECT_GT(drawn, 96u * 64 / 4);
+
+  // Colour lit per vertex beside the extra targets, as without them.
+  const RunResult gouraud = run_render(dir, size + "--shading gouraud -o " + quoted(dir / "g.png") +
+                                                " --aov objects=" + quoted(dir / "o3.exr"));
+  ASSERT_EQ(gouraud.exit_code, 0) << gouraud.err;
+  run_render(dir, size + "--shading gouraud -o " + quoted(dir / "g1.png"));
+  const Image lit = read_image(dir / "g.png"), lit_alone = read_image(dir / "g1.png");
+  ASSERT_EQ(lit.pixels.size(), lit_alone.pixels.size());
+  for (size_t i = 0; i < lit.pixels.size(); ++i)
+    ASSERT_LE(std::abs(lit.pixels[i] - lit_alone.pixels[i]), 1.0f / 255 + 1e-6f) << i;
+}
+
+TEST(Cli, BadAovsAreOneLineErrorsNamingThem) {
+  TempDir dir;
+  const std::string out = "--width 16 --height 16 -o " + quoted(dir / "c.png") + " ";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--aov colours=" + quoted(dir / "a.exr"), "colours"},
+      {"--aov normals=" + quoted(dir / "a.png"), "a.png"},
+      {"--aov normals", "kind=path"},
+      {"--aov depth=" + quoted(dir / "no" / "a.exr"), "does not exist"},
+      {"--aov depth=" + quoted(dir / "1.exr") + " --aov ids=" + quoted(dir / "2.exr") +
+           " --aov objects=" + quoted(dir / "3.exr") + " --aov normals=" + quoted(dir / "4.exr"),
+       "at most 3"},
+      {"--wireframe --aov depth=" + quoted(dir / "a.exr"), "--wireframe"},
+  };
+  for (const auto& [args, words] : cases) {
+    const RunResult r = run_render(dir, out + args);
+    ASSERT_TRUE(r.exited) << args;
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << args << ": " << r.err;
+  }
 }
 
 }  // namespace

@@ -45,6 +45,11 @@ void write_image(const std::filesystem::path& path, uint32_t width, uint32_t hei
   write(path, width, height, channels, pixels.size(), OIIO::TypeDesc::FLOAT, pixels.data());
 }
 
+void write_image(const std::filesystem::path& path, uint32_t width, uint32_t height,
+                 uint32_t channels, std::span<const uint32_t> pixels) {
+  write(path, width, height, channels, pixels.size(), OIIO::TypeDesc::UINT32, pixels.data());
+}
+
 Image read_image(const std::filesystem::path& path) {
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) throw Error(ErrorCode::kIo, path.string() + ": cannot read: " + OIIO::geterror());

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -117,6 +118,11 @@ Bounds Scene::bounds() const {
 
 namespace {
 
+// What colour target t receives.
+TargetOutput output_of(const PipelineState& pipeline, uint32_t t) {
+  return t == 0 ? pipeline.output : pipeline.extra_outputs[t - 1];
+}
+
 std::array<float, 16> to_array(const glm::mat4& m) {
   std::array<float, 16> a;
   for (int c = 0; c < 4; ++c) {
@@ -127,9 +133,10 @@ std::array<float, 16> to_array(const glm::mat4& m) {
 }
 
 // The objects through the vertex stage's transform: eye-space position (varyings 0..2) and
-// normal (3..5), the vertex colour (6..9).
+// normal (3..5), the vertex colour (6..9): lit per vertex when a Gouraud colour is drawn per
+// vertex beside other targets.
 void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pipeline,
-                      const Scene& scene) {
+                      const Scene& scene, SceneShading shading) {
   const float aspect = static_cast<float>(target.width()) / static_cast<float>(target.height());
   pipeline.roles = {6, 3, 0};
   VertexShader shader;
@@ -138,9 +145,12 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
   shader.transform.projection = to_array(scene.camera.projection(aspect, pipeline.clip_depth));
   // The normal stream only where a normal is read (a model whose 3x3 part is singular has no
   // normal matrix, which other outputs do not need).
-  const bool normals =
-      pipeline.output == TargetOutput::kNormal ||
-      (pipeline.output == TargetOutput::kColor && pipeline.shader == FragmentShader::kPhong);
+  bool normals =
+      pipeline.shader == FragmentShader::kPhong && pipeline.output == TargetOutput::kColor;
+  for (uint32_t t = 0; t < target.target_count(); ++t)
+    normals = normals || output_of(pipeline, t) == TargetOutput::kNormal;
+  const bool lit_vertices =
+      shading == SceneShading::kPerVertex && pipeline.shader == FragmentShader::kGouraud;
   shader.transform.normal_stream = normals ? 1 : -1;
   shader.transform.space = VaryingSpace::kEye;
   // Both faces lit, as shade_vertices lights them (meshes with inconsistent winding).
@@ -174,7 +184,13 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
       compute_normals(computed[i]);
       mesh = &computed[i];
     }
-    colours[i] = mesh->colors;
+    if (lit_vertices) {
+      const std::vector<float> lit = shade_vertices(o.mesh, o.model, scene.camera.eye, scene.light);
+      colours[i].resize(lit.size() / 4);
+      std::memcpy(&colours[i].data()->x, lit.data(), lit.size() * sizeof(float));
+    } else {
+      colours[i] = mesh->colors;
+    }
     colours[i].resize(mesh->positions.size(), glm::vec4(1.0f));
     streams[i] = {VertexStream{{&mesh->positions.data()->x, mesh->positions.size() * 3}, 3},
                   VertexStream{{&mesh->normals.data()->x, mesh->normals.size() * 3}, 3},
@@ -196,10 +212,11 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
 
 void draw_scene(Renderer& renderer, Framebuffer& target, const PipelineState& pipeline,
                 const Scene& scene, SceneShading shading) {
-  if (shading == SceneShading::kPerPixel || pipeline.output != TargetOutput::kColor) {
+  if (shading == SceneShading::kPerPixel || pipeline.output != TargetOutput::kColor ||
+      target.target_count() > 1) {
     PipelineState p = pipeline;
     if (shading == SceneShading::kPerPixel) p.shader = FragmentShader::kPhong;
-    draw_transformed(renderer, target, p, scene);
+    draw_transformed(renderer, target, p, scene, shading);
     return;
   }
   const float aspect = static_cast<float>(target.width()) / static_cast<float>(target.height());

@@ -18,6 +18,9 @@ TESSERA_API void write_image(const std::filesystem::path& path, uint32_t width, 
                              uint32_t channels, std::span<const uint8_t> pixels);
 TESSERA_API void write_image(const std::filesystem::path& path, uint32_t width, uint32_t height,
                              uint32_t channels, std::span<const float> pixels);
+// Unsigned 32-bit integers (IDs): for formats that keep them, such as EXR and TIFF.
+TESSERA_API void write_image(const std::filesystem::path& path, uint32_t width, uint32_t height,
+                             uint32_t channels, std::span<const uint32_t> pixels);
 
 // An image read back from a file: float values, 8-bit files scaled to 0..1, top row first.
 struct Image {

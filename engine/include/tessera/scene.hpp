@@ -86,7 +86,8 @@ enum class SceneShading { kPerVertex, kPerPixel };
 // eye at the origin), else by the scene's light, with each vertex's colour as the base. With a
 // vision output (PipelineState::output) the objects go through the vertex stage's transform:
 // normals and positions in eye space, object IDs 1, 2, ... in scene order (0 is left for the
-// background).
+// background), primitive IDs the triangle's index in its object's mesh. A framebuffer with
+// extra targets gets each of them (PipelineState::extra_outputs) from the same pass.
 TESSERA_API void draw_scene(Renderer& renderer, Framebuffer& target, const PipelineState& pipeline,
                             const Scene& scene, SceneShading shading = SceneShading::kPerVertex);
 
