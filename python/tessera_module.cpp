@@ -66,7 +66,10 @@ using Names = std::span<const std::pair<std::string_view, E>>;
 constexpr std::pair<std::string_view, Backend> kBackendNames[] = {
     {"fast", Backend::kFast}, {"reference", Backend::kReference}};
 constexpr std::pair<std::string_view, ColorFormat> kColorNames[] = {
-    {"rgba8", ColorFormat::kRGBA8}, {"rgba32f", ColorFormat::kRGBA32F}};
+    {"rgba8", ColorFormat::kRGBA8},
+    {"rgba32f", ColorFormat::kRGBA32F},
+    {"r32f", ColorFormat::kR32F},
+    {"r32ui", ColorFormat::kR32UI}};
 constexpr std::pair<std::string_view, DepthFormat> kDepthNames[] = {
     {"float32", DepthFormat::kFloat32},
     {"unorm24", DepthFormat::kUnorm24},
@@ -389,22 +392,97 @@ PYBIND11_MODULE(tessera, m) {
                           kInterpolationNames);
   def_enum<FragmentShader>(pipeline, "shader", &PipelineState::shader, kShaderNames);
   def_enum<TargetOutput>(pipeline, "output", &PipelineState::output, kOutputNames);
+  pipeline.def_property(
+      "extra_outputs",
+      [](const PipelineState& self) {
+        std::vector<std::string> outputs;
+        for (TargetOutput output : self.extra_outputs)
+          outputs.push_back(name_of<TargetOutput>(kOutputNames, output));
+        return outputs;
+      },
+      [](PipelineState& self, const std::vector<std::string>& outputs) {
+        if (outputs.size() > self.extra_outputs.size()) {
+          throw py::value_error("extra_outputs holds " + std::to_string(outputs.size()) +
+                                " outputs, more than the " +
+                                std::to_string(self.extra_outputs.size()) + " extra targets");
+        }
+        self.extra_outputs.fill(TargetOutput::kColor);
+        for (size_t i = 0; i < outputs.size(); ++i)
+          self.extra_outputs[i] = parse<TargetOutput>(kOutputNames, "extra_outputs", outputs[i]);
+      },
+      "What extra targets 1, 2, 3 receive (output names, as output); a shorter list leaves the "
+      "rest \"color\".");
 
   py::class_<Framebuffer>(m, "Framebuffer",
                           "Colour and depth of every sample of every pixel; cleared to colour 0 "
                           "and depth 1.")
       .def(py::init([](uint32_t width, uint32_t height, uint32_t samples, std::string_view color,
-                       std::string_view depth) {
+                       std::string_view depth, const std::vector<std::string>& targets) {
              tessera::FramebufferDesc desc;
              desc.width = width;
              desc.height = height;
              desc.samples = samples;
              desc.color_format = parse<ColorFormat>(kColorNames, "color", color);
              desc.depth_format = parse<DepthFormat>(kDepthNames, "depth", depth);
+             if (targets.size() > desc.extra_formats.size()) {
+               throw py::value_error("targets holds " + std::to_string(targets.size()) +
+                                     " formats, more than the " +
+                                     std::to_string(desc.extra_formats.size()) +
+                                     " extra targets a framebuffer has");
+             }
+             desc.extra_targets = static_cast<uint32_t>(targets.size());
+             for (size_t i = 0; i < targets.size(); ++i)
+               desc.extra_formats[i] = parse<ColorFormat>(kColorNames, "targets", targets[i]);
              return Framebuffer(desc);
            }),
            py::arg("width"), py::arg("height"), py::arg("samples") = 1, py::arg("color") = "rgba8",
-           py::arg("depth") = "float32")
+           py::arg("depth") = "float32", py::arg("targets") = std::vector<std::string>{},
+           "color: target 0's format (\"rgba8\", \"rgba32f\"); targets: the formats of extra "
+           "targets 1..3 (\"rgba8\", \"rgba32f\", \"r32f\", \"r32ui\"), written in the same "
+           "pass as target 0 (Pipeline.extra_outputs says what each receives).")
+      .def_property_readonly("target_count", &Framebuffer::target_count)
+      .def(
+          "target_format",
+          [](const Framebuffer& self, uint32_t target) {
+            return name_of<ColorFormat>(kColorNames, self.target_format(target));
+          },
+          py::arg("target"))
+      .def(
+          "read_target",
+          [](const Framebuffer& self, uint32_t target) -> py::array {
+            const ColorFormat format = self.target_format(target);
+            if (format == ColorFormat::kR32UI) {
+              std::vector<uint32_t> ids;
+              {
+                py::gil_scoped_release release;
+                ids = self.read_target_uint(target);
+              }
+              return to_numpy(std::move(ids), {self.height(), self.width()});
+            }
+            std::vector<float> values;
+            {
+              py::gil_scoped_release release;
+              values = self.read_target(target);
+            }
+            if (format == ColorFormat::kR32F)
+              return to_numpy(std::move(values), {self.height(), self.width()});
+            return to_numpy(std::move(values), {self.height(), self.width(), 4});
+          },
+          py::arg("target"),
+          "Colour target `target`, resolved, top row first: HxWx4 float32 (rgba8 divided by 255, "
+          "rgba32f), HxW float32 (r32f), or HxW uint32 (r32ui: sample 0 of each pixel).")
+      .def(
+          "clear_target",
+          [](Framebuffer& self, uint32_t target, py::object value) {
+            if (self.target_format(target) == ColorFormat::kR32UI) {
+              self.clear_target_uint(target, value.cast<uint32_t>());
+            } else {
+              self.clear_target(target, value.cast<std::array<float, 4>>());
+            }
+          },
+          py::arg("target"), py::arg("value"),
+          "Clears a target: to an RGBA tuple (an r32f target keeps r), or an r32ui one to an "
+          "integer.")
       .def_property_readonly("width", &Framebuffer::width)
       .def_property_readonly("height", &Framebuffer::height)
       .def_property_readonly("samples", &Framebuffer::samples)

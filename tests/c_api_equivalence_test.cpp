@@ -21,6 +21,18 @@
 
 namespace {
 
+// A C framebuffer description of one colour target.
+tessera_framebuffer_desc framebuffer_desc(uint32_t width, uint32_t height, uint32_t samples,
+                                          tessera_color_format color, tessera_depth_format depth) {
+  tessera_framebuffer_desc d{};
+  d.width = width;
+  d.height = height;
+  d.samples = samples;
+  d.color_format = color;
+  d.depth_format = depth;
+  return d;
+}
+
 // Owners of C handles, so that a failed assertion leaks nothing.
 struct CFramebuffer {
   tessera_framebuffer* handle = nullptr;
@@ -155,9 +167,9 @@ TEST_P(CApiEquivalence, TheSameSceneGivesTheSameBytesThroughBothApis) {
   const tessera_renderer_desc c_renderer_desc{2, static_cast<tessera_backend>(config.backend)};
   ASSERT_EQ(tessera_renderer_create(&c_renderer_desc, nullptr, &c_renderer.handle), TESSERA_OK);
   CFramebuffer c_fb;
-  const tessera_framebuffer_desc c_desc{kWidth, kHeight, config.samples,
-                                        static_cast<tessera_color_format>(config.color),
-                                        static_cast<tessera_depth_format>(config.depth)};
+  const tessera_framebuffer_desc c_desc = framebuffer_desc(
+      kWidth, kHeight, config.samples, static_cast<tessera_color_format>(config.color),
+      static_cast<tessera_depth_format>(config.depth));
   ASSERT_EQ(tessera_framebuffer_create(&c_desc, nullptr, &c_fb.handle), TESSERA_OK);
   tessera::Renderer renderer({.threads = 2, .backend = config.backend});
   tessera::Framebuffer fb(desc);
@@ -373,8 +385,8 @@ TEST(CApi, ShadingStateCrossesFieldByField) {
     p.output = static_cast<tessera::TargetOutput>(output);
     c.object_id = p.object_id = 99;
     CFramebuffer c_fb;
-    const tessera_framebuffer_desc c_desc{kSize, kSize, 1, TESSERA_COLOR_RGBA32F,
-                                          TESSERA_DEPTH_FLOAT32};
+    const tessera_framebuffer_desc c_desc =
+        framebuffer_desc(kSize, kSize, 1, TESSERA_COLOR_RGBA32F, TESSERA_DEPTH_FLOAT32);
     ASSERT_EQ(tessera_framebuffer_create(&c_desc, nullptr, &c_fb.handle), TESSERA_OK);
     tessera::Framebuffer fb({kSize, kSize, 1, tessera::ColorFormat::kRGBA32F});
     ASSERT_EQ(tessera_draw_triangles(c_renderer.handle, c_fb.handle, &c, &c_input), TESSERA_OK)
@@ -525,7 +537,8 @@ TEST(CApi, ErrorsAreTheCppApisErrors) {
     const tessera_renderer_desc c_renderer_desc{1, test.backend};
     ASSERT_EQ(tessera_renderer_create(&c_renderer_desc, nullptr, &c_renderer.handle), TESSERA_OK);
     CFramebuffer c_fb;
-    const tessera_framebuffer_desc c_desc{32, 32, 1, TESSERA_COLOR_RGBA8, TESSERA_DEPTH_FLOAT32};
+    const tessera_framebuffer_desc c_desc =
+        framebuffer_desc(32, 32, 1, TESSERA_COLOR_RGBA8, TESSERA_DEPTH_FLOAT32);
     ASSERT_EQ(tessera_framebuffer_create(&c_desc, nullptr, &c_fb.handle), TESSERA_OK);
     tessera_pipeline_state c;
     ASSERT_EQ(tessera_pipeline_state_init(&c), TESSERA_OK);
@@ -598,7 +611,8 @@ TEST(CApi, AllocatorCallbacksHoldTheHandles) {
       },
       &calls};
   tessera_framebuffer* fb = nullptr;
-  const tessera_framebuffer_desc desc{16, 16, 2, TESSERA_COLOR_RGBA8, TESSERA_DEPTH_FLOAT32};
+  const tessera_framebuffer_desc desc =
+      framebuffer_desc(16, 16, 2, TESSERA_COLOR_RGBA8, TESSERA_DEPTH_FLOAT32);
   ASSERT_EQ(tessera_framebuffer_create(&desc, &allocator, &fb), TESSERA_OK);
   tessera_renderer* renderer = nullptr;
   tessera_renderer_desc renderer_desc;

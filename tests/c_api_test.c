@@ -63,7 +63,11 @@ static int is_rgba8(const uint8_t* p, int r, int g, int b, int a) {
 
 static tessera_framebuffer* make_framebuffer(uint32_t samples, tessera_color_format color,
                                              tessera_depth_format depth) {
-  const tessera_framebuffer_desc desc = {kSize, kSize, samples, color, depth};
+  const tessera_framebuffer_desc desc = {.width = kSize,
+                                         .height = kSize,
+                                         .samples = samples,
+                                         .color_format = color,
+                                         .depth_format = depth};
   tessera_framebuffer* fb = NULL;
   OK(tessera_framebuffer_create(&desc, NULL, &fb));
   return fb;
@@ -368,6 +372,108 @@ static void check_user_shader(tessera_backend backend) {
   tessera_renderer_destroy(renderer);
 }
 
+/* ---- Multiple render targets --------------------------------------------------------------- */
+
+/* Writes the colour varyings to target 0, one minus them to the RGBA32F target 3, the
+ * fragment's x to the R32UI target 2 (through extra_uint; extra[1] is then NULL). Target 1
+ * (R32F) has a built-in output: the engine fills it. */
+static void colour_and_x(const tessera_fragment_batch* batch, const tessera_fragment_output* out,
+                         void* user_data) {
+  (void)user_data;
+  const uint32_t stride = TESSERA_FRAGMENT_BATCH_STRIDE;
+  if (out->extra[2] == NULL || out->extra[1] != NULL || out->extra_uint[1] == NULL) return;
+  for (uint32_t i = 0; i < batch->count; ++i) {
+    for (uint32_t c = 0; c < 4; ++c) {
+      out->color[c * stride + i] = batch->varyings[c * stride + i];
+      out->extra[2][c * stride + i] = 1.0f - batch->varyings[c * stride + i];
+    }
+    out->extra_uint[1][i] = (uint32_t)batch->x[i];
+  }
+}
+
+static void check_targets(tessera_backend backend) {
+  tessera_renderer* renderer = make_renderer(backend, 2);
+  tessera_framebuffer_desc desc = {
+      .width = kSize,
+      .height = kSize,
+      .samples = 4,
+      .color_format = TESSERA_COLOR_RGBA8,
+      .extra_targets = 3,
+      .extra_formats = {TESSERA_COLOR_R32F, TESSERA_COLOR_R32UI, TESSERA_COLOR_RGBA32F}};
+  tessera_framebuffer* fb = NULL;
+  OK(tessera_framebuffer_create(&desc, NULL, &fb));
+  tessera_framebuffer_desc got;
+  OK(tessera_framebuffer_get_desc(fb, &got));
+  CHECK(got.extra_targets == 3 && got.extra_formats[0] == TESSERA_COLOR_R32F &&
+        got.extra_formats[1] == TESSERA_COLOR_R32UI &&
+        got.extra_formats[2] == TESSERA_COLOR_RGBA32F);
+  OK(tessera_framebuffer_clear_target_uint(fb, 2, 99));
+  OK(tessera_framebuffer_clear_target(fb, 3, 0.5f, 0.5f, 0.5f, 0.5f));
+
+  /* Eye depth 2 into target 1, an object ID past 2^24 exactly into target 2, normals into 3. */
+  tessera_pipeline_state pipeline;
+  OK(tessera_pipeline_state_init(&pipeline));
+  pipeline.extra_outputs[0] = TESSERA_OUTPUT_EYE_DEPTH;
+  pipeline.extra_outputs[1] = TESSERA_OUTPUT_OBJECT_ID;
+  pipeline.extra_outputs[2] = TESSERA_OUTPUT_NORMAL;
+  pipeline.object_id = (1u << 24) + 1;
+  OK(draw_full_quad(renderer, fb, &pipeline));
+  static float depth[kSize * kSize], normals[kSize * kSize * 4];
+  static uint32_t ids[kSize * kSize];
+  static uint8_t rgba[kSize * kSize * 4];
+  OK(tessera_framebuffer_read_target(fb, 1, depth, kSize * kSize));
+  OK(tessera_framebuffer_read_target_uint(fb, 2, ids, kSize * kSize));
+  OK(tessera_framebuffer_read_target(fb, 3, normals, kSize * kSize * 4));
+  OK(tessera_framebuffer_read_rgba8(fb, rgba, sizeof rgba));
+  const size_t centre = 32 * kSize + 32;
+  CHECK(fabsf(depth[centre] - 2.0f) < 1e-6f);
+  CHECK(ids[centre] == (1u << 24) + 1);
+  CHECK(normals[centre * 4 + 2] == 1.0f && normals[centre * 4] == 0.0f);
+  CHECK(is_rgba8(pixel8(rgba, 32, 32), 128, 255, 64, 255));
+
+  /* A user shader feeds targets 2 and 3; the engine computes target 1's eye depth. */
+  pipeline.shader = TESSERA_SHADER_USER;
+  pipeline.fragment_function = colour_and_x;
+  pipeline.extra_outputs[1] = TESSERA_OUTPUT_COLOR;
+  pipeline.extra_outputs[2] = TESSERA_OUTPUT_COLOR;
+  pipeline.depth_compare = TESSERA_COMPARE_LESS_EQUAL;
+  OK(draw_full_quad(renderer, fb, &pipeline));
+  OK(tessera_framebuffer_read_target_uint(fb, 2, ids, kSize * kSize));
+  OK(tessera_framebuffer_read_target(fb, 3, normals, kSize * kSize * 4));
+  CHECK(ids[centre] == 32 && ids[32 * kSize + 5] == 5);
+  CHECK(normals[centre * 4] == 0.5f && normals[centre * 4 + 1] == 0.0f &&
+        normals[centre * 4 + 2] == 0.75f && normals[centre * 4 + 3] == 0.0f);
+
+  /* Errors name what was wrong and write nothing. */
+  EXPECT_ERROR(tessera_framebuffer_read_target_uint(fb, 1, ids, kSize * kSize),
+               TESSERA_ERROR_INVALID_ARGUMENT, "tessera_framebuffer_read_target_uint", "not R32UI");
+  EXPECT_ERROR(tessera_framebuffer_read_target(fb, 2, depth, 1), TESSERA_ERROR_INVALID_ARGUMENT,
+               "tessera_framebuffer_read_target", "read_target_uint");
+  EXPECT_ERROR(tessera_framebuffer_read_target(fb, 4, depth, kSize * kSize),
+               TESSERA_ERROR_INVALID_ARGUMENT, "tessera_framebuffer_read_target",
+               "target 4 does not exist");
+  EXPECT_ERROR(tessera_framebuffer_read_target(fb, 1, depth, 10), TESSERA_ERROR_INVALID_ARGUMENT,
+               "tessera_framebuffer_read_target", "needs 4096");
+  EXPECT_ERROR(tessera_framebuffer_clear_target_uint(fb, 3, 1), TESSERA_ERROR_INVALID_ARGUMENT,
+               "tessera_framebuffer_clear_target_uint", "not R32UI");
+  pipeline.extra_outputs[1] = TESSERA_OUTPUT_NORMAL;
+  EXPECT_ERROR(draw_full_quad(renderer, fb, &pipeline), TESSERA_ERROR_INVALID_ARGUMENT,
+               "tessera_draw_triangles", "extra_outputs[1] kNormal");
+  pipeline.extra_outputs[1] = (tessera_target_output)77;
+  EXPECT_ERROR(draw_full_quad(renderer, fb, &pipeline), TESSERA_ERROR_INVALID_ARGUMENT,
+               "tessera_draw_triangles", "extra_outputs[1]");
+  tessera_framebuffer_destroy(fb);
+  desc.extra_targets = 4;
+  EXPECT_ERROR(tessera_framebuffer_create(&desc, NULL, &fb), TESSERA_ERROR_INVALID_ARGUMENT,
+               "tessera_framebuffer_create", "extra_targets 4");
+  CHECK(fb == NULL);
+  desc.extra_targets = 1;
+  desc.color_format = TESSERA_COLOR_R32UI;
+  EXPECT_ERROR(tessera_framebuffer_create(&desc, NULL, &fb), TESSERA_ERROR_INVALID_ARGUMENT,
+               "tessera_framebuffer_create", "target 0");
+  tessera_renderer_destroy(renderer);
+}
+
 /* ---- Allocator callbacks ----------------------------------------------------------------- */
 
 typedef struct counting_allocator {
@@ -393,8 +499,11 @@ static void counting_free(void* p, void* user) {
 static void check_allocator(void) {
   counting_allocator counts = {0, 0, 0, 0};
   const tessera_allocator allocator = {counting_alloc, counting_free, &counts};
-  const tessera_framebuffer_desc desc = {kSize, kSize, 1, TESSERA_COLOR_RGBA8,
-                                         TESSERA_DEPTH_FLOAT32};
+  const tessera_framebuffer_desc desc = {.width = kSize,
+                                         .height = kSize,
+                                         .samples = 1,
+                                         .color_format = TESSERA_COLOR_RGBA8,
+                                         .depth_format = TESSERA_DEPTH_FLOAT32};
   tessera_framebuffer* fb = NULL;
   OK(tessera_framebuffer_create(&desc, &allocator, &fb));
   tessera_renderer_desc rdesc;
@@ -424,7 +533,11 @@ static void check_allocator(void) {
   CHECK(renderer == NULL);
   /* A creation that fails after the allocation gives the memory back. */
   counts.fail = 0;
-  const tessera_framebuffer_desc empty = {0, kSize, 1, TESSERA_COLOR_RGBA8, TESSERA_DEPTH_FLOAT32};
+  const tessera_framebuffer_desc empty = {.width = 0,
+                                          .height = kSize,
+                                          .samples = 1,
+                                          .color_format = TESSERA_COLOR_RGBA8,
+                                          .depth_format = TESSERA_DEPTH_FLOAT32};
   EXPECT_ERROR(tessera_framebuffer_create(&empty, &allocator, &fb), TESSERA_ERROR_INVALID_ARGUMENT,
                "tessera_framebuffer_create", "width 0");
   CHECK(counts.allocations == counts.frees);
@@ -501,7 +614,11 @@ static void check_errors(void) {
   tessera_framebuffer* created = NULL;
   EXPECT_ERROR(tessera_framebuffer_create(NULL, NULL, &created), bad_arg,
                "tessera_framebuffer_create", "desc is NULL");
-  const tessera_framebuffer_desc desc = {8, 8, 1, TESSERA_COLOR_RGBA8, TESSERA_DEPTH_FLOAT32};
+  const tessera_framebuffer_desc desc = {.width = 8,
+                                         .height = 8,
+                                         .samples = 1,
+                                         .color_format = TESSERA_COLOR_RGBA8,
+                                         .depth_format = TESSERA_DEPTH_FLOAT32};
   EXPECT_ERROR(tessera_framebuffer_create(&desc, NULL, NULL), bad_arg, "tessera_framebuffer_create",
                "out is NULL");
   EXPECT_ERROR(tessera_renderer_create(NULL, NULL, NULL), bad_arg, "tessera_renderer_create",
@@ -680,6 +797,8 @@ int main(void) {
   check_shading();
   check_user_shader(TESSERA_BACKEND_FAST);
   check_user_shader(TESSERA_BACKEND_REFERENCE);
+  check_targets(TESSERA_BACKEND_FAST);
+  check_targets(TESSERA_BACKEND_REFERENCE);
   check_allocator();
   check_errors();
   printf("c_api_test: %d checks, %d failed\n", checks, failures);

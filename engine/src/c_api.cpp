@@ -56,8 +56,11 @@ constexpr bool same(C c, E e) {
 static_assert(TESSERA_MAX_VARYINGS == tessera::kMaxVaryings);
 static_assert(TESSERA_MAX_LIGHTS == tessera::kMaxLights);
 static_assert(TESSERA_MAX_FRAMEBUFFER_SIZE == tessera::kMaxFramebufferSize);
+static_assert(TESSERA_MAX_COLOR_TARGETS == tessera::kMaxColorTargets);
 static_assert(same(TESSERA_COLOR_RGBA8, tessera::ColorFormat::kRGBA8) &&
-              same(TESSERA_COLOR_RGBA32F, tessera::ColorFormat::kRGBA32F));
+              same(TESSERA_COLOR_RGBA32F, tessera::ColorFormat::kRGBA32F) &&
+              same(TESSERA_COLOR_R32F, tessera::ColorFormat::kR32F) &&
+              same(TESSERA_COLOR_R32UI, tessera::ColorFormat::kR32UI));
 static_assert(same(TESSERA_DEPTH_FLOAT32, tessera::DepthFormat::kFloat32) &&
               same(TESSERA_DEPTH_UNORM24, tessera::DepthFormat::kUnorm24) &&
               same(TESSERA_DEPTH_UNORM16, tessera::DepthFormat::kUnorm16));
@@ -230,6 +233,10 @@ tessera::PipelineState to_cpp(const tessera_pipeline_state& c) {
   }
   p.shader = to_cpp_enum<tessera::FragmentShader>(c.shader, "pipeline shader");
   p.output = to_cpp_enum<tessera::TargetOutput>(c.output, "pipeline output");
+  for (uint32_t t = 0; t + 1 < tessera::kMaxColorTargets; ++t) {
+    p.extra_outputs[t] = to_cpp_enum<tessera::TargetOutput>(
+        c.extra_outputs[t], [t] { return "pipeline extra_outputs[" + std::to_string(t) + "]"; });
+  }
   p.roles = {c.roles.color, c.roles.normal, c.roles.position};
   tessera::PhongState& phong = p.phong;
   std::copy(c.phong.base_color, c.phong.base_color + 4, phong.base_color.begin());
@@ -265,7 +272,9 @@ tessera::PipelineState to_cpp(const tessera_pipeline_state& c) {
       const tessera_fragment_batch batch{b.count,    b.varying_count, b.x,
                                          b.y,        b.sample_mask,   b.primitive_id,
                                          b.varyings, b.ddx,           b.ddy};
-      const tessera_fragment_output output{o.color, o.discard};
+      tessera_fragment_output output{o.color, o.discard, {}, {}};
+      std::copy(o.extra.begin(), o.extra.end(), output.extra);
+      std::copy(o.extra_uint.begin(), o.extra_uint.end(), output.extra_uint);
       function(&batch, &output, user_data);
     };
   }
@@ -288,6 +297,8 @@ tessera_pipeline_state to_c(const tessera::PipelineState& p) {
     c.varying_modes[i] = to_c_enum<tessera_varying_mode>(p.varying_modes[i]);
   c.shader = to_c_enum<tessera_fragment_shader>(p.shader);
   c.output = to_c_enum<tessera_target_output>(p.output);
+  for (uint32_t t = 0; t + 1 < tessera::kMaxColorTargets; ++t)
+    c.extra_outputs[t] = to_c_enum<tessera_target_output>(p.extra_outputs[t]);
   c.roles = {p.roles.color, p.roles.normal, p.roles.position};
   const tessera::PhongState& phong = p.phong;
   std::copy(phong.base_color.begin(), phong.base_color.end(), c.phong.base_color);
@@ -471,10 +482,16 @@ tessera_result tessera_framebuffer_create(const tessera_framebuffer_desc* desc,
   return guarded(__func__, [&] {
     tessera_framebuffer*& result = deref(out, "out");
     const tessera_framebuffer_desc& d = deref(desc, "desc");
-    const tessera::FramebufferDesc cpp{
+    tessera::FramebufferDesc cpp{
         d.width, d.height, d.samples,
         to_cpp_enum<tessera::ColorFormat>(d.color_format, "framebuffer color_format"),
         to_cpp_enum<tessera::DepthFormat>(d.depth_format, "framebuffer depth_format")};
+    cpp.extra_targets = d.extra_targets;
+    for (uint32_t t = 0; t + 1 < tessera::kMaxColorTargets; ++t) {
+      cpp.extra_formats[t] = to_cpp_enum<tessera::ColorFormat>(d.extra_formats[t], [t] {
+        return "framebuffer extra_formats[" + std::to_string(t) + "]";
+      });
+    }
     result = create_handle<tessera_framebuffer>(allocator, cpp);
   });
 }
@@ -487,9 +504,16 @@ tessera_result tessera_framebuffer_get_desc(const tessera_framebuffer* framebuff
                                             tessera_framebuffer_desc* out) {
   return guarded(__func__, [&] {
     const tessera::FramebufferDesc& d = deref(framebuffer, "framebuffer").framebuffer.desc();
-    deref(out, "out") = {d.width, d.height, d.samples,
-                         to_c_enum<tessera_color_format>(d.color_format),
-                         to_c_enum<tessera_depth_format>(d.depth_format)};
+    tessera_framebuffer_desc& c = deref(out, "out");
+    c = {d.width,
+         d.height,
+         d.samples,
+         to_c_enum<tessera_color_format>(d.color_format),
+         to_c_enum<tessera_depth_format>(d.depth_format),
+         d.extra_targets,
+         {}};
+    for (uint32_t t = 0; t + 1 < tessera::kMaxColorTargets; ++t)
+      c.extra_formats[t] = to_c_enum<tessera_color_format>(d.extra_formats[t]);
   });
 }
 
@@ -529,6 +553,49 @@ tessera_result tessera_framebuffer_read_depth(const tessera_framebuffer* framebu
     const tessera::Framebuffer& fb = deref(framebuffer, "framebuffer").framebuffer;
     read_image(dst, capacity, pixels(fb.desc()), "floats",
                image_name(fb.desc(), "depth image").c_str(), [&] { return fb.read_depth(); });
+  });
+}
+
+tessera_result tessera_framebuffer_read_target(const tessera_framebuffer* framebuffer,
+                                               uint32_t target, float* dst, size_t capacity) {
+  return guarded(__func__, [&] {
+    const tessera::Framebuffer& fb = deref(framebuffer, "framebuffer").framebuffer;
+    const tessera::ColorFormat format = fb.target_format(target);
+    if (format == tessera::ColorFormat::kR32UI) (void)fb.read_target(target);  // its error
+    const uint32_t channels = format == tessera::ColorFormat::kR32F ? 1 : 4;
+    const std::string what =
+        image_name(fb.desc(), "image") + " of target " + std::to_string(target);
+    read_image(dst, capacity, pixels(fb.desc()) * channels, "floats", what.c_str(),
+               [&] { return fb.read_target(target); });
+  });
+}
+
+tessera_result tessera_framebuffer_read_target_uint(const tessera_framebuffer* framebuffer,
+                                                    uint32_t target, uint32_t* dst,
+                                                    size_t capacity) {
+  return guarded(__func__, [&] {
+    const tessera::Framebuffer& fb = deref(framebuffer, "framebuffer").framebuffer;
+    if (fb.target_format(target) != tessera::ColorFormat::kR32UI) {
+      (void)fb.read_target_uint(target);  // its error
+    }
+    const std::string what =
+        image_name(fb.desc(), "image") + " of target " + std::to_string(target);
+    read_image(dst, capacity, pixels(fb.desc()), "values", what.c_str(),
+               [&] { return fb.read_target_uint(target); });
+  });
+}
+
+tessera_result tessera_framebuffer_clear_target(tessera_framebuffer* framebuffer, uint32_t target,
+                                                float r, float g, float b, float a) {
+  return guarded(__func__, [&] {
+    deref(framebuffer, "framebuffer").framebuffer.clear_target(target, {r, g, b, a});
+  });
+}
+
+tessera_result tessera_framebuffer_clear_target_uint(tessera_framebuffer* framebuffer,
+                                                     uint32_t target, uint32_t value) {
+  return guarded(__func__, [&] {
+    deref(framebuffer, "framebuffer").framebuffer.clear_target_uint(target, value);
   });
 }
 

@@ -45,8 +45,11 @@ int main(int argc, char** argv) {
   TRY(tessera_renderer_desc_init(&renderer_desc)); /* 1 thread, the fast engine */
   renderer_desc.threads = 2;
   TRY(tessera_renderer_create(&renderer_desc, NULL, &renderer));
-  const tessera_framebuffer_desc fb_desc = {kWidth, kHeight, 4, TESSERA_COLOR_RGBA8,
-                                            TESSERA_DEPTH_FLOAT32};
+  const tessera_framebuffer_desc fb_desc = {.width = kWidth,
+                                            .height = kHeight,
+                                            .samples = 4,
+                                            .color_format = TESSERA_COLOR_RGBA8,
+                                            .depth_format = TESSERA_DEPTH_FLOAT32};
   TRY(tessera_framebuffer_create(&fb_desc, NULL, &framebuffer));
   TRY(tessera_framebuffer_clear_color(framebuffer, 0.1f, 0.1f, 0.15f, 1));
   TRY(tessera_framebuffer_clear_depth(framebuffer, 1));

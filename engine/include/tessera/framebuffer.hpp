@@ -26,9 +26,9 @@ enum class ColorFormat { kRGBA8, kRGBA32F, kR32F, kR32UI };
 enum class DepthFormat { kFloat32, kUnorm24, kUnorm16 };
 
 struct FramebufferDesc {
-  uint32_t width = 0;    // 1..kMaxFramebufferSize
-  uint32_t height = 0;   // 1..kMaxFramebufferSize
-  uint32_t samples = 1;  // 1, 2, 4, 8 or 16
+  uint32_t width = 0;                              // 1..kMaxFramebufferSize
+  uint32_t height = 0;                             // 1..kMaxFramebufferSize
+  uint32_t samples = 1;                            // 1, 2, 4, 8 or 16
   ColorFormat color_format = ColorFormat::kRGBA8;  // target 0: kRGBA8 or kRGBA32F
   DepthFormat depth_format = DepthFormat::kFloat32;
   // Multiple render targets: targets 1..extra_targets (0..3), of formats extra_formats[0..],

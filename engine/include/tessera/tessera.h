@@ -86,13 +86,18 @@ typedef struct tessera_allocator {
 #define TESSERA_MAX_VARYINGS 32            /* floats per vertex (tessera::kMaxVaryings) */
 #define TESSERA_MAX_LIGHTS 8               /* Phong lights (tessera::kMaxLights) */
 #define TESSERA_MAX_FRAMEBUFFER_SIZE 16384 /* pixels per side (tessera::kMaxFramebufferSize) */
+#define TESSERA_MAX_COLOR_TARGETS 4        /* colour targets (tessera::kMaxColorTargets) */
 
 /* ---- Framebuffers ------------------------------------------------------------------------ */
 
 /* The enumerations below have the values of the C++ enumerations of the same names. */
+/* Target 0 is RGBA8 or RGBA32F; extra targets take any format: R32F one float, R32UI one
+ * unsigned 32-bit integer (exact IDs). */
 typedef enum tessera_color_format {
   TESSERA_COLOR_RGBA8 = 0,
   TESSERA_COLOR_RGBA32F = 1,
+  TESSERA_COLOR_R32F = 2,
+  TESSERA_COLOR_R32UI = 3,
   TESSERA_COLOR_FORMAT_MAX_ENUM = 0x7FFFFFFF
 } tessera_color_format;
 
@@ -105,11 +110,16 @@ typedef enum tessera_depth_format {
 
 /* tessera::FramebufferDesc. Zero formats are RGBA8 colour and float32 depth. */
 typedef struct tessera_framebuffer_desc {
-  uint32_t width;   /* 1..TESSERA_MAX_FRAMEBUFFER_SIZE */
-  uint32_t height;  /* 1..TESSERA_MAX_FRAMEBUFFER_SIZE */
-  uint32_t samples; /* 1, 2, 4, 8 or 16 */
-  tessera_color_format color_format;
+  uint32_t width;                    /* 1..TESSERA_MAX_FRAMEBUFFER_SIZE */
+  uint32_t height;                   /* 1..TESSERA_MAX_FRAMEBUFFER_SIZE */
+  uint32_t samples;                  /* 1, 2, 4, 8 or 16 */
+  tessera_color_format color_format; /* target 0 */
   tessera_depth_format depth_format;
+  /* Multiple render targets: targets 1..extra_targets (0..3) of these formats; each triangle
+   * draw writes every target (tessera_pipeline_state.extra_outputs says what), points, lines
+   * and polygons target 0 only. */
+  uint32_t extra_targets;
+  tessera_color_format extra_formats[TESSERA_MAX_COLOR_TARGETS - 1];
 } tessera_framebuffer_desc;
 
 /* Colour and depth for every sample of every pixel (tessera::Framebuffer). */
@@ -149,6 +159,23 @@ TESSERA_API tessera_result tessera_framebuffer_read_depth(const tessera_framebuf
                                                           float* dst, size_t capacity);
 TESSERA_API tessera_result tessera_framebuffer_read_sample_depth(
     const tessera_framebuffer* framebuffer, float* dst, size_t capacity);
+/* Colour target `target` (0..extra_targets), as tessera::Framebuffer::read_target:
+ *   read_target:      width * height * 4 floats (RGBA8, RGBA32F; RGBA8 divided by 255) or
+ *                     width * height (R32F), resolved;
+ *   read_target_uint: width * height values of an R32UI target, sample 0's of each pixel.
+ * The wrong read for the target's format, or a target that does not exist, is
+ * TESSERA_ERROR_INVALID_ARGUMENT. The extra targets start cleared to 0; clear_target keeps
+ * r of an R32F target, clear_target_uint clears an R32UI one. */
+TESSERA_API tessera_result tessera_framebuffer_read_target(const tessera_framebuffer* framebuffer,
+                                                           uint32_t target, float* dst,
+                                                           size_t capacity);
+TESSERA_API tessera_result tessera_framebuffer_read_target_uint(
+    const tessera_framebuffer* framebuffer, uint32_t target, uint32_t* dst, size_t capacity);
+TESSERA_API tessera_result tessera_framebuffer_clear_target(tessera_framebuffer* framebuffer,
+                                                            uint32_t target, float r, float g,
+                                                            float b, float a);
+TESSERA_API tessera_result tessera_framebuffer_clear_target_uint(tessera_framebuffer* framebuffer,
+                                                                 uint32_t target, uint32_t value);
 
 /* ---- Renderers --------------------------------------------------------------------------- */
 
@@ -255,7 +282,12 @@ typedef struct tessera_fragment_batch {
 
 typedef struct tessera_fragment_output {
   float* color;     /* RGBA of fragment i: color[c * TESSERA_FRAGMENT_BATCH_STRIDE + i] */
-  uint8_t* discard; /* nonzero drops the fragment; all zero on entry */
+  uint8_t* discard; /* nonzero drops the fragment (in every target); all zero on entry */
+  /* Extra target t + 1's values, for a target whose output is TESSERA_OUTPUT_COLOR: extra[t]
+   * for RGBA8 and RGBA32F (4 channels, as color) and R32F (1 channel); extra_uint[t][i] for
+   * R32UI. NULL where the framebuffer has no such target or the other kind. */
+  float* extra[TESSERA_MAX_COLOR_TARGETS - 1];
+  uint32_t* extra_uint[TESSERA_MAX_COLOR_TARGETS - 1];
 } tessera_fragment_output;
 
 /* Called from several threads at once, for batches of different screen tiles: it must be safe
@@ -263,8 +295,9 @@ typedef struct tessera_fragment_output {
 typedef void (*tessera_fragment_function)(const tessera_fragment_batch* batch,
                                           const tessera_fragment_output* output, void* user_data);
 
-/* What the colour target receives (tessera::TargetOutput). PRIMITIVE_ID and OBJECT_ID need an
- * RGBA32F framebuffer. */
+/* What a colour target receives (tessera::TargetOutput). PRIMITIVE_ID and OBJECT_ID need an
+ * RGBA32F, R32F or R32UI target (exact below 2^24 in the float ones, always in R32UI); an
+ * R32UI target takes only them and a user shader's COLOR. */
 typedef enum tessera_target_output {
   TESSERA_OUTPUT_COLOR = 0,        /* the fragment shader's colour */
   TESSERA_OUTPUT_EYE_DEPTH = 1,    /* clip-space w at the pixel */
@@ -335,10 +368,12 @@ typedef struct tessera_pipeline_state {
   tessera_target_output output;
   tessera_varying_roles roles;
   tessera_phong_state phong;
-  uint32_t object_id; /* TESSERA_OUTPUT_OBJECT_ID, below 2^24 */
+  uint32_t object_id; /* TESSERA_OUTPUT_OBJECT_ID, below 2^24 in a float target */
   /* TESSERA_SHADER_USER: the function, and the pointer passed to every call of it. */
   tessera_fragment_function fragment_function;
   void* fragment_user_data;
+  /* What extra target t + 1 receives (tessera_framebuffer_desc.extra_targets). */
+  tessera_target_output extra_outputs[TESSERA_MAX_COLOR_TARGETS - 1];
 } tessera_pipeline_state;
 
 TESSERA_API tessera_result tessera_pipeline_state_init(tessera_pipeline_state* state);

@@ -8,8 +8,11 @@
 
 int main(void) {
   enum { kSize = 32 };
-  const tessera_framebuffer_desc desc = {kSize, kSize, 1, TESSERA_COLOR_RGBA8,
-                                         TESSERA_DEPTH_FLOAT32};
+  const tessera_framebuffer_desc desc = {.width = kSize,
+                                         .height = kSize,
+                                         .samples = 1,
+                                         .color_format = TESSERA_COLOR_RGBA8,
+                                         .depth_format = TESSERA_DEPTH_FLOAT32};
   tessera_renderer_desc renderer_desc;
   tessera_pipeline_state pipeline;
   tessera_framebuffer* fb = NULL;
