@@ -29,7 +29,6 @@
 #include "binning/tile_grid.hpp"
 #include "engine/src/fast/block_kernel.hpp"
 #include "engine/src/fast/pixel_record.hpp"
-#include "engine/src/fast/user_fragments.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
 
@@ -50,6 +49,14 @@
 HWY_BEFORE_NAMESPACE();
 namespace tessera::fast::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+
+// The fragment back end of the user shader's kernels (user_fragments-inl.h, compiled with
+// them): block (bx, by) of the tile (8x8 pixels from pixel (8 bx, 8 by); `block` its index in
+// the tile's storage) for triangle `t` with planes `planes`. mask[i]: the samples of the
+// block's pixel i (row-major) that are covered and passed the depth test. z: null, or the depth
+// to write for sample s of pixel i at z[s * 64 + i] (depth writes on).
+void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float* planes,
+                      int32_t bx, int32_t by, size_t block, const uint32_t* mask, const float* z);
 
 namespace {
 
@@ -485,7 +492,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
   const float depth_scale = tc.depth_scale;
   bool wrote = false;
   // A user shader's block (shade::Shader::kUser): each pixel's passing samples, and with depth
-  // writes each sample's depth, kept for its back end (user_fragments.hpp), which writes them
+  // writes each sample's depth, kept for its back end (user_fragments-inl.h), which writes them
   // after the shader, for the fragments it keeps.
   constexpr bool kUser = kShader == shade::Shader::kUser;
   constexpr bool kUserDepth = kUser && kDepth == DepthMode::kTestWrite;

@@ -1,5 +1,5 @@
 // The raster kernel instances of the shaded draws whose shader is shade::Shader::kUser (a
-// user fragment function: user_fragments.hpp is their back end),
+// user fragment function, or several colour targets: user_fragments-inl.h is their back end),
 // compiled for every SIMD target from block_kernel-inl.h. Each shader has its own source, so
 // that its kernels compile in parallel with the others; block_kernel.cpp gathers them into the
 // kernel table.
@@ -9,6 +9,7 @@
 #include <hwy/highway.h>
 
 #include "engine/src/fast/block_kernel-inl.h"
+#include "engine/src/fast/user_fragments-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace tessera::fast::HWY_NAMESPACE {

@@ -1,22 +1,38 @@
-// The quad back end of the fast engine (user_fragments.hpp): user fragment shaders and
-// framebuffers with several colour targets. Compiled once, not per SIMD target: the values are
-// the same bits on every target. A varying is its plane at the pixel, base + (gx x + gy y),
-// divided by the 1/w plane there when perspective-correct: the operations, in the order, of the
-// built-in shaders (shade/shade-inl.h), which this file runs for the built-in targets at the
-// build's baseline target.
-#include "engine/src/fast/user_fragments.hpp"
-
-#include <hwy/highway.h>
+// The fragment back end of user fragment shaders (FragmentShader::kUser) and of framebuffers
+// with several colour targets in the fast engine, compiled for every SIMD target with the user
+// shader's raster kernels (block_kernel_shader_user.cpp, after block_kernel-inl.h, which
+// declares shade_user_block): the raster kernel finds a block's covered samples that pass the
+// depth test and hands them here, and this forms the block's 2x2 quads, evaluates the
+// triangle's planes into each fragment's varyings and each quad's derivatives, runs the shader
+// on the batch (shade/user_batch.hpp), shades the built-in targets (shade/shade-inl.h, whose
+// values are the same bits on every target), and writes the depth and the targets of the
+// fragments it keeps. A varying is its plane at the pixel, base + (gx x + gy y), divided by the
+// 1/w plane there when perspective-correct: the operations, in the order, of the built-in
+// shaders.
 
 #include <algorithm>
 #include <bit>
 
+#include "engine/src/fast/block_kernel.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
-#include "engine/src/shade/shade-inl.h"
 #include "engine/src/shade/user_batch.hpp"
 
-namespace tessera::fast {
+// Per-target include guard (see block_kernel-inl.h).
+#if defined(TESSERA_ENGINE_SRC_FAST_USER_FRAGMENTS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef TESSERA_ENGINE_SRC_FAST_USER_FRAGMENTS_INL_H_
+#undef TESSERA_ENGINE_SRC_FAST_USER_FRAGMENTS_INL_H_
+#else
+#define TESSERA_ENGINE_SRC_FAST_USER_FRAGMENTS_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include "engine/src/shade/shade-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace tessera::fast::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
 
 namespace {
 
@@ -26,8 +42,6 @@ struct QPlane {
   bool flat;
   float at(float x, float y) const { return flat ? 1.0f : q0 + (q_dx * x + q_dy * y); }
 };
-
-namespace hn = hwy::HWY_NAMESPACE;
 
 // The built-in output `target` of the batch's `count` fragments, evaluated at offsets (fx, fy)
 // from the plane origin (beyond-horizon centres already moved to a sample), into the batch's
@@ -83,6 +97,7 @@ void shade_target(const shade::TargetShading& target, uint32_t index, const shad
 
 }  // namespace
 
+// Declared in block_kernel-inl.h.
 void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float* planes,
                       int32_t bx, int32_t by, size_t block, const uint32_t* mask, const float* z) {
   const shade::Layout& layout = *tc.layout;
@@ -200,7 +215,7 @@ void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float
     const uint32_t m = batch.mask(f);
     if (m == 0 || batch.discarded(f)) continue;
     const size_t i = pixel[f];
-    const auto colour_of = [&](uint32_t k, float (&rgba)[4]) {
+    const auto colour_of = [&](uint32_t k, float(&rgba)[4]) {
       const float* c = batch.target_color(k);
       for (uint32_t ch = 0; ch < 4; ++ch)
         rgba[ch] = c[ch * kStride + f];
@@ -243,4 +258,7 @@ void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float
   if (wrote) mark_hiz_dirty(tc, block);
 }
 
-}  // namespace tessera::fast
+}  // namespace tessera::fast::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // per-target include guard
