@@ -425,10 +425,9 @@ PYBIND11_MODULE(tessera, m) {
              desc.color_format = parse<ColorFormat>(kColorNames, "color", color);
              desc.depth_format = parse<DepthFormat>(kDepthNames, "depth", depth);
              if (targets.size() > desc.extra_formats.size()) {
-               throw py::value_error("targets holds " + std::to_string(targets.size()) +
-                                     " formats, more than the " +
-                                     std::to_string(desc.extra_formats.size()) +
-                                     " extra targets a framebuffer has");
+               throw py::value_error(
+                   "targets holds " + std::to_string(targets.size()) + " formats, more than the " +
+                   std::to_string(desc.extra_formats.size()) + " extra targets a framebuffer has");
              }
              desc.extra_targets = static_cast<uint32_t>(targets.size());
              for (size_t i = 0; i < targets.size(); ++i)

@@ -59,6 +59,10 @@ struct Options {
   std::string shading;              // empty: phong for meshes and the demo, gouraud otherwise
   std::vector<std::string> lights;  // "x,y,z" each
   std::vector<std::string> aovs;    // "kind=path" each: extra render targets
+  std::string texture;              // --shading textured
+  std::string filter = "bilinear";
+  std::string wrap = "repeat";
+  std::vector<float> border_color{0, 0, 0, 0};
 };
 
 // An extra render target written from the same pass as the colour (--aov kind=path).
@@ -275,6 +279,8 @@ void apply_shading(const Options& o, bool is_capture, Job& job, tessera::Pipelin
                         : is_capture || job.mode != Mode::kTriangles ? "gouraud"
                                                                      : "phong";
   const bool vision = s == "normals" || s == "depth" || s == "ids" || s == "objects";
+  if (!o.texture.empty() && s != "textured")
+    bad_argument("--texture: only with --shading textured");
   if (s != "gouraud" && job.mode != Mode::kTriangles) {
     bad_argument("--shading " + s + ": not with --wireframe or --points");
   }
@@ -325,6 +331,30 @@ void apply_shading(const Options& o, bool is_capture, Job& job, tessera::Pipelin
     if (is_capture && pipeline.phong.light_count == 0) {
       pipeline.phong.light_count = 1;  // a light at the eye
     }
+  } else if (s == "textured") {
+    // Varyings 0 and 1 are (u, v); the texture's colour as it is stored, nothing else.
+    if (!is_capture) bad_argument("--shading textured: for TRI2 captures");
+    if (job.capture->varying_count < 2) {
+      bad_argument("--shading textured reads (u, v) from varyings 0 and 1, but the capture has " +
+                   std::to_string(job.capture->varying_count));
+    }
+    if (o.texture.empty()) bad_argument("--shading textured needs --texture FILE");
+    pipeline.shader = tessera::FragmentShader::kTextured;
+    pipeline.roles.texcoord = 0;
+    pipeline.roles.color = job.capture->varying_count;  // no colour varyings: white
+    tessera::Sampler& sampler = pipeline.sampler;
+    const tessera::Filter filter =
+        o.filter == "nearest" ? tessera::Filter::kNearest : tessera::Filter::kLinear;
+    sampler.mag_filter = sampler.min_filter = filter;
+    sampler.mip_filter =
+        o.filter == "trilinear" ? tessera::MipFilter::kLinear : tessera::MipFilter::kNone;
+    sampler.wrap_u = sampler.wrap_v = o.wrap == "clamp"    ? tessera::Wrap::kClampToEdge
+                                      : o.wrap == "mirror" ? tessera::Wrap::kMirroredRepeat
+                                      : o.wrap == "border" ? tessera::Wrap::kClampToBorder
+                                                           : tessera::Wrap::kRepeat;
+    std::copy_n(o.border_color.begin(), 4, sampler.border_color.begin());
+    pipeline.texture = std::make_shared<tessera::Texture>(
+        tessera::load_texture(o.texture, false, o.filter == "trilinear"));
   } else if (s == "normals") {
     pipeline.output = tessera::TargetOutput::kNormal;
   } else if (s == "depth") {
@@ -343,6 +373,7 @@ int run(const Options& o, const CLI::App& app) {
   check_finite("--target", o.target);
   check_finite("--up", o.up);
   check_finite("--clear", o.clear);
+  check_finite("--border-color", o.border_color);
   check_output_directory("--output", o.output);
   check_output_directory("--depth", o.depth_output);
   check_finite("--point-size", {o.point_size});
@@ -647,10 +678,26 @@ int main(int argc, char** argv) {
   app.add_flag("--float", o.float_color, "float colour buffer (implied by an .exr output)");
   app.add_option("--shading", o.shading,
                  "phong (per pixel: the default for meshes and the demo), gouraud (vertex "
-                 "colours, the default for captures; meshes lit per vertex), flat (captures), or "
-                 "a float output into an .exr file: normals, depth (eye), ids (triangle index), "
+                 "colours, the default for captures; meshes lit per vertex), flat (captures), "
+                 "textured (TRI2 captures, --texture), or a float output into an .exr file: "
+                 "normals, depth (eye), ids (triangle index), "
                  "objects (object ID)")
-      ->check(CLI::IsMember({"gouraud", "flat", "phong", "normals", "depth", "ids", "objects"}));
+      ->check(CLI::IsMember(
+          {"gouraud", "flat", "phong", "textured", "normals", "depth", "ids", "objects"}));
+  app.add_option("--texture", o.texture,
+                 "--shading textured: the image (PNG, JPEG, EXR, TIFF, ...) sampled at a TRI2 "
+                 "capture's varyings 0 and 1 as (u, v), u right and v down from the image's "
+                 "top-left corner; its values as stored (no sRGB decoding)");
+  app.add_option("--filter", o.filter, "--shading textured: texture filter")
+      ->check(CLI::IsMember({"nearest", "bilinear", "trilinear"}))
+      ->capture_default_str();
+  app.add_option("--wrap", o.wrap, "--shading textured: wrap mode of u and v")
+      ->check(CLI::IsMember({"repeat", "clamp", "mirror", "border"}))
+      ->capture_default_str();
+  app.add_option("--border-color", o.border_color,
+                 "--shading textured --wrap border: the border colour r,g,b,a (default 0,0,0,0)")
+      ->delimiter(',')
+      ->expected(4);
   app.add_option("--light", o.lights,
                  "--shading phong: a point light at x,y,z (eye space for captures, world space "
                  "for meshes); repeatable, up to 8")

@@ -158,11 +158,15 @@ TEST(Cli, Tri2CapturesDrawWithTheShadingAsked) {
     EXPECT_GT(lit.at(8, 8)[0], lit.at(1, 1)[0] + 0.1f) << backend;  // (0, 0) in eye space
     EXPECT_GT(lit.at(1, 1)[0], 0.1f) << backend;                    // against (-1.75, 1.75)
   }
-  // Gouraud reads varyings 0..3: the normal (0, 0, 1) and x as alpha (at least 1 right of
-  // x = 0.5, where the PNG reader, which multiplies by alpha, keeps blue).
+  // Gouraud reads varyings 0..3: the normal (0, 0, 1) and x as alpha. The PNG keeps the colour
+  // as drawn (straight alpha): blue 1 also where alpha is below 1.
   RunResult r = run_render(dir, in + "-o " + quoted(dir / "gouraud.png"));
   ASSERT_TRUE(r.exited && r.exit_code == 0) << r.err;
-  EXPECT_EQ(read_image(dir / "gouraud.png").at(13, 5)[2], 1.0f);
+  const Image gouraud = read_image(dir / "gouraud.png");
+  EXPECT_EQ(gouraud.at(13, 5)[2], 1.0f);
+  EXPECT_EQ(gouraud.at(13, 5)[3], 1.0f);
+  EXPECT_EQ(gouraud.at(1, 5)[2], 1.0f);
+  EXPECT_LT(gouraud.at(1, 5)[3], 1.0f);
   // Normals into an EXR, from either backend.
   for (const char* backend : {"fast", "reference"}) {
     r = run_render(dir,
@@ -593,6 +597,78 @@ TEST(Cli, BadAovsAreOneLineErrorsNamingThem) {
     EXPECT_NE(r.exit_code, 0) << args;
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
     EXPECT_NE(r.err.find(words), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+// TRI2 replay with a texture: (u, v) from varyings 0 and 1. A full-window quad whose (u, v) runs
+// over [0, 1] at the texture's own size draws each texel on its pixel, with every filter.
+TEST(Cli, Tri2CapturesReplayTextured) {
+  TempDir dir;
+  constexpr uint32_t w = 24, h = 16;
+  std::vector<uint8_t> texels(w * h * 4);
+  for (size_t i = 0; i < texels.size(); ++i)
+    texels[i] = i % 4 == 3 ? 255 : static_cast<uint8_t>((i * 37 + i / 7) % 256);
+  write_image(dir / "texture.png", w, h, 4, std::span<const uint8_t>(texels));
+  Capture c;
+  c.width = w;
+  c.height = h;
+  c.varying_count = 2;
+  c.positions = {{-1, 1, 0, 1}, {1, 1, 0, 1},  {1, -1, 0, 1},
+                 {-1, 1, 0, 1}, {1, -1, 0, 1}, {-1, -1, 0, 1}};
+  c.varyings = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+  save_capture(dir / "uv.tri", c);
+  const Image want = read_image(dir / "texture.png");
+  for (const char* filter : {"nearest", "bilinear", "trilinear"}) {
+    for (const char* backend : {"fast", "reference"}) {
+      const RunResult r =
+          run_render(dir, quoted(dir / "uv.tri") + " --shading textured --texture " +
+                              quoted(dir / "texture.png") + " --filter " + filter + " --backend " +
+                              backend + " -o " + quoted(dir / "out.png"));
+      ASSERT_TRUE(r.exited);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      EXPECT_EQ(read_image(dir / "out.png").pixels, want.pixels) << filter << ", " << backend;
+    }
+  }
+  // Clamp to border outside [0, 1]: the quad's (u, v) over [-1, 2] shows the border colour
+  // around the texture.
+  for (float& v : c.varyings)
+    v = 3 * v - 1;
+  save_capture(dir / "wide.tri", c);
+  const RunResult r = run_render(dir, quoted(dir / "wide.tri") + " --shading textured --texture " +
+                                          quoted(dir / "texture.png") +
+                                          " --filter nearest --wrap border --border-color 0,1,0,1 "
+                                          "-o " +
+                                          quoted(dir / "border.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image border = read_image(dir / "border.png");
+  EXPECT_EQ(border.at(0, 0)[1], 1.0f);
+  EXPECT_EQ(border.at(0, 0)[0], 0.0f);
+  // Pixel (12, 8): u = 12.5 / 24 * 3 - 1 = 0.5625, v = 8.5 / 16 * 3 - 1 = 0.59375: texel (13, 9).
+  for (uint32_t k = 0; k < 4; ++k)
+    EXPECT_EQ(border.at(12, 8)[k], want.at(13, 9)[k]) << k;
+
+  // Errors: one line naming what was wrong.
+  c.varying_count = 1;
+  c.varyings.assign(6, 0.5f);
+  save_capture(dir / "one.tri", c);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {quoted(dir / "uv.tri") + " --shading textured --texture " + quoted(dir / "none.png"),
+       "none.png"},
+      {quoted(dir / "uv.tri") + " --shading textured", "--texture"},
+      {quoted(dir / "uv.tri") + " --texture " + quoted(dir / "texture.png"), "--shading textured"},
+      {quoted(dir / "one.tri") + " --shading textured --texture " + quoted(dir / "texture.png"),
+       "varyings 0 and 1"},
+      {"--shading textured --texture " + quoted(dir / "texture.png"), "TRI2"},
+      {quoted(dir / "uv.tri") + " --shading textured --filter cubic --texture " +
+           quoted(dir / "texture.png"),
+       "--filter"},
+  };
+  for (const auto& [args, words] : cases) {
+    const RunResult bad = run_render(dir, args + " -o " + quoted(dir / "bad.png"));
+    ASSERT_TRUE(bad.exited) << args;
+    EXPECT_NE(bad.exit_code, 0) << args;
+    EXPECT_EQ(bad.err.find('\n'), bad.err.size() - 1) << "not one line: " << bad.err;
+    EXPECT_NE(bad.err.find(words), std::string::npos) << args << ": " << bad.err;
   }
 }
 

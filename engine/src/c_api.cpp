@@ -232,6 +232,11 @@ tessera::PipelineState to_cpp(const tessera_pipeline_state& c) {
         c.varying_modes[i], [i] { return "pipeline varying_modes[" + std::to_string(i) + "]"; });
   }
   p.shader = to_cpp_enum<tessera::FragmentShader>(c.shader, "pipeline shader");
+  // Textures are not in the C API yet: its shaders end at TESSERA_SHADER_USER.
+  if (static_cast<uint32_t>(c.shader) > TESSERA_SHADER_USER) {
+    invalid("pipeline shader has the invalid value " +
+            std::to_string(static_cast<uint32_t>(c.shader)));
+  }
   p.output = to_cpp_enum<tessera::TargetOutput>(c.output, "pipeline output");
   for (uint32_t t = 0; t + 1 < tessera::kMaxColorTargets; ++t) {
     p.extra_outputs[t] = to_cpp_enum<tessera::TargetOutput>(

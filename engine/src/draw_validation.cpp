@@ -8,6 +8,7 @@
 #include <span>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -238,6 +239,32 @@ void validate_phong(const PhongState& phong) {
   }
 }
 
+// The sampler of FragmentShader::kTextured.
+void validate_sampler(const Sampler& s) {
+  check_enum(s.mag_filter, Filter::kLinear, "sampler.mag_filter");
+  check_enum(s.min_filter, Filter::kLinear, "sampler.min_filter");
+  check_enum(s.mip_filter, MipFilter::kLinear, "sampler.mip_filter");
+  check_enum(s.wrap_u, Wrap::kClampToBorder, "sampler.wrap_u");
+  check_enum(s.wrap_v, Wrap::kClampToBorder, "sampler.wrap_v");
+  for (float c : s.border_color) {
+    if (!std::isfinite(c)) {
+      fail(ErrorCode::kInvalidArgument,
+           "pipeline sampler.border_color holds " + std::to_string(c) + ", not a finite number");
+    }
+  }
+  const std::pair<float, const char*> values[] = {
+      {s.lod_bias, "lod_bias"}, {s.min_lod, "min_lod"}, {s.max_lod, "max_lod"}};
+  for (const auto& [value, name] : values) {
+    if (std::isnan(value)) {
+      fail(ErrorCode::kInvalidArgument, std::string("pipeline sampler.") + name + " is NaN");
+    }
+  }
+  if (!(s.min_lod <= s.max_lod)) {
+    fail(ErrorCode::kInvalidArgument, "pipeline sampler.min_lod " + std::to_string(s.min_lod) +
+                                          " is above max_lod " + std::to_string(s.max_lod));
+  }
+}
+
 const char* output_name(TargetOutput output) {
   switch (output) {
     case TargetOutput::kColor:
@@ -266,10 +293,10 @@ void validate_shading(const Framebuffer& target, const PipelineState& pipeline,
     check_enum(pipeline.varying_modes[i], VaryingMode::kFlat,
                ("varying_modes[" + std::to_string(i) + "]").c_str());
   }
-  check_enum(pipeline.shader, FragmentShader::kUser, "shader");
+  check_enum(pipeline.shader, FragmentShader::kTextured, "shader");
   const uint32_t count = input.attribute_count;
   const VaryingRoles& roles = pipeline.roles;
-  bool phong_checked = false;
+  bool phong_checked = false, textured_checked = false;
   // Each colour target's output (target 0's `output`, the extra targets' extra_outputs).
   const FramebufferDesc& desc = target.desc();
   for (uint32_t t = 0; t <= desc.extra_targets; ++t) {
@@ -279,7 +306,8 @@ void validate_shading(const Framebuffer& target, const PipelineState& pipeline,
         t == 0 ? std::string("output") : "extra_outputs[" + std::to_string(t - 1) + "]";
     check_enum(output, TargetOutput::kObjectId, name.c_str());
     const std::string what = name + " " + output_name(output);
-    if (output == TargetOutput::kNormal) check_group(roles.normal, 3, count, "normal", what.c_str());
+    if (output == TargetOutput::kNormal)
+      check_group(roles.normal, 3, count, "normal", what.c_str());
     if (output == TargetOutput::kPosition)
       check_group(roles.position, 3, count, "position", what.c_str());
     if (output == TargetOutput::kColor && pipeline.shader == FragmentShader::kPhong) {
@@ -287,6 +315,15 @@ void validate_shading(const Framebuffer& target, const PipelineState& pipeline,
       check_group(roles.position, 3, count, "position", "shader kPhong");
       if (!phong_checked) validate_phong(pipeline.phong);
       phong_checked = true;
+    }
+    if (output == TargetOutput::kColor && pipeline.shader == FragmentShader::kTextured &&
+        !textured_checked) {
+      textured_checked = true;
+      if (pipeline.texture == nullptr) {
+        fail(ErrorCode::kInvalidArgument, "shader kTextured needs a texture, which is null");
+      }
+      check_group(roles.texcoord, 2, count, "texcoord", "shader kTextured");
+      validate_sampler(pipeline.sampler);
     }
     const bool user = output == TargetOutput::kColor && pipeline.shader == FragmentShader::kUser;
     if (user && pipeline.color_write && !pipeline.fragment_function) {

@@ -41,8 +41,8 @@ void validate(const FramebufferDesc& d) {
   for (uint32_t t = 0; t < d.extra_targets; ++t) {
     const auto f = static_cast<uint32_t>(d.extra_formats[t]);
     if (f > static_cast<uint32_t>(ColorFormat::kR32UI)) {
-      throw Error(ErrorCode::kInvalidArgument, "framebuffer extra_formats[" + std::to_string(t) +
-                                                   "] is not a ColorFormat");
+      throw Error(ErrorCode::kInvalidArgument,
+                  "framebuffer extra_formats[" + std::to_string(t) + "] is not a ColorFormat");
     }
   }
   if (d.depth_format != DepthFormat::kFloat32 && d.depth_format != DepthFormat::kUnorm24 &&
@@ -136,9 +136,9 @@ namespace {
 // The extra target `target` (1..3) of `s`, or an error naming what was wrong.
 const detail::ExtraTarget& extra_target(const detail::FramebufferStorage& s, uint32_t target) {
   if (target == 0 || target > s.desc.extra_targets) {
-    throw Error(ErrorCode::kInvalidArgument,
-                "colour target " + std::to_string(target) + " does not exist (the framebuffer has " +
-                    std::to_string(1 + s.desc.extra_targets) + ")");
+    throw Error(ErrorCode::kInvalidArgument, "colour target " + std::to_string(target) +
+                                                 " does not exist (the framebuffer has " +
+                                                 std::to_string(1 + s.desc.extra_targets) + ")");
   }
   return s.extra[target - 1];
 }
@@ -182,9 +182,9 @@ void Framebuffer::clear_target(uint32_t target, std::array<float, 4> rgba) {
 
 void Framebuffer::clear_target_uint(uint32_t target, uint32_t value) {
   if (target == 0 || extra_target(*storage_, target).format != ColorFormat::kR32UI) {
-    throw Error(ErrorCode::kInvalidArgument,
-                "colour target " + std::to_string(target) + " is " +
-                    format_name(target_format(target)) + ", not R32UI: clear it with clear_target");
+    throw Error(ErrorCode::kInvalidArgument, "colour target " + std::to_string(target) + " is " +
+                                                 format_name(target_format(target)) +
+                                                 ", not R32UI: clear it with clear_target");
   }
   detail::ExtraTarget& t = storage_->extra[target - 1];
   std::fill(t.data.begin(), t.data.end(), value);
@@ -231,9 +231,9 @@ std::vector<float> Framebuffer::read_target(uint32_t target) const {
 
 std::vector<uint32_t> Framebuffer::read_target_uint(uint32_t target) const {
   if (target == 0 || extra_target(*storage_, target).format != ColorFormat::kR32UI) {
-    throw Error(ErrorCode::kInvalidArgument,
-                "colour target " + std::to_string(target) + " is " +
-                    format_name(target_format(target)) + ", not R32UI: read it with read_target");
+    throw Error(ErrorCode::kInvalidArgument, "colour target " + std::to_string(target) + " is " +
+                                                 format_name(target_format(target)) +
+                                                 ", not R32UI: read it with read_target");
   }
   const detail::FramebufferStorage& s = *storage_;
   const detail::ExtraTarget& t = s.extra[target - 1];

@@ -6,8 +6,10 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "tessera/shading.hpp"
+#include "tessera/texture.hpp"
 
 namespace tessera {
 
@@ -68,7 +70,11 @@ struct PipelineState {
   VaryingRoles roles;
   PhongState phong;                    // FragmentShader::kPhong
   FragmentFunction fragment_function;  // FragmentShader::kUser
-  uint32_t object_id = 0;              // TargetOutput::kObjectId
+  // FragmentShader::kTextured: the texture (shared, never modified by a draw) and how it is
+  // sampled.
+  std::shared_ptr<const Texture> texture;
+  Sampler sampler;
+  uint32_t object_id = 0;  // TargetOutput::kObjectId
 };
 
 }  // namespace tessera

@@ -26,9 +26,12 @@ enum class VaryingMode : uint8_t {
 
 // The fragment shader: what colour a covered pixel gets (once per pixel, at its centre).
 enum class FragmentShader : uint8_t {
-  kGouraud,  // the colour varyings (VaryingRoles::color), RGBA; missing ones (0, 0, 0, 1)
-  kPhong,    // per-pixel Phong lighting (PhongState) of the interpolated normal and position
-  kUser,     // PipelineState::fragment_function, on batches of fragments (FragmentBatch)
+  kGouraud,   // the colour varyings (VaryingRoles::color), RGBA; missing ones (0, 0, 0, 1)
+  kPhong,     // per-pixel Phong lighting (PhongState) of the interpolated normal and position
+  kUser,      // PipelineState::fragment_function, on batches of fragments (FragmentBatch)
+  kTextured,  // PipelineState::texture sampled at the texture coordinates (VaryingRoles::
+              // texcoord) with PipelineState::sampler, times the colour varyings when the draw
+              // has them: unlit, the level of detail from each 2x2 quad's derivatives
 };
 
 // What the colour target receives. kColor is the fragment shader's colour; the others are the
@@ -49,9 +52,10 @@ enum class TargetOutput : uint8_t {
 // Where the built-in shaders and outputs find their inputs among the varyings: the index of
 // the first of each group.
 struct VaryingRoles {
-  uint32_t color = 0;     // 4 varyings, RGBA: Gouraud's colour, Phong's base colour factor
-  uint32_t normal = 4;    // 3 varyings: Phong's N and TargetOutput::kNormal
-  uint32_t position = 7;  // 3 varyings: Phong's surface point and TargetOutput::kPosition
+  uint32_t color = 0;      // 4 varyings, RGBA: Gouraud's colour, Phong's base colour factor
+  uint32_t normal = 4;     // 3 varyings: Phong's N and TargetOutput::kNormal
+  uint32_t position = 7;   // 3 varyings: Phong's surface point and TargetOutput::kPosition
+  uint32_t texcoord = 10;  // 2 varyings, (u, v): FragmentShader::kTextured
 };
 
 enum class LightKind : uint8_t { kDirectional, kPoint, kSpot };

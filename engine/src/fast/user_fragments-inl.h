@@ -17,6 +17,7 @@
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
 #include "engine/src/shade/user_batch.hpp"
+#include "tessera/texture.hpp"
 
 // Per-target include guard (see block_kernel-inl.h).
 #if defined(TESSERA_ENGINE_SRC_FAST_USER_FRAGMENTS_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -92,6 +93,15 @@ void shade_target(const shade::TargetShading& target, uint32_t index, const shad
     hn::StoreU(g, df, rgba + kStride + i);
     hn::StoreU(b, df, rgba + 2 * kStride + i);
     hn::StoreU(a, df, rgba + 3 * kStride + i);
+  }
+  if (!target.textured) return;
+  // The texel at the fragment's texture coordinates (the LOD from its quad's derivatives)
+  // times the colour.
+  alignas(64) float texel[4 * kStride];
+  tessera::sample(*all.texture, all.sampler, batch.view(), all.texcoord, all.texcoord + 1, texel);
+  for (uint32_t c = 0; c < 4; ++c) {
+    for (uint32_t i = 0; i < count; ++i)
+      rgba[c * kStride + i] = texel[c * kStride + i] * rgba[c * kStride + i];
   }
 }
 

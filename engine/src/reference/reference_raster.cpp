@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "engine/src/clip.hpp"
+#include "engine/src/reference/reference_sampler.hpp"
 #include "engine/src/reference/reference_shade.hpp"
 #include "engine/src/sample_positions.hpp"
 #include "engine/src/shade/user_batch.hpp"
@@ -87,7 +88,10 @@ struct FragmentInputs {
   uint32_t values = 0;                             // varyings plus the carriers
   std::array<VaryingMode, kMaxClipValues> mode{};  // kPerspective, kAffine or kFlat
   bool needs_q = false;                            // a perspective value or the eye depth is read
-  bool user = false;     // a user fragment function shades a target (FragmentShader::kUser)
+  bool function = false;  // a user fragment function shades a target (FragmentShader::kUser)
+  // Fragments go in 2x2 quads with derivatives: for a user function, or a texture's LOD
+  // (FragmentShader::kTextured).
+  bool quads = false;
   uint32_t targets = 1;  // colour targets
 };
 
@@ -101,8 +105,9 @@ FragmentInputs fragment_inputs(const PipelineState& pipeline, uint32_t attribute
     const TargetOutput output = output_of(pipeline, t);
     barycentrics = barycentrics || output == TargetOutput::kBarycentrics;
     eye_depth = eye_depth || output == TargetOutput::kEyeDepth;
-    f.user = f.user || (pipeline.color_write && output == TargetOutput::kColor &&
-                        pipeline.shader == FragmentShader::kUser);
+    const bool colour = pipeline.color_write && output == TargetOutput::kColor;
+    f.function = f.function || (colour && pipeline.shader == FragmentShader::kUser);
+    f.quads = f.quads || f.function || (colour && pipeline.shader == FragmentShader::kTextured);
   }
   f.values = attribute_count + (barycentrics ? 3 : 0);
   for (uint32_t i = 0; i < f.values; ++i) {
@@ -194,12 +199,17 @@ bool derivatives(const std::array<WindowVertex, 3>& v, int64_t area, uint32_t bi
   return true;
 }
 
+// The derivatives of every value per pixel step in x and y, at a quad's centre.
+struct Derivatives {
+  std::array<double, kMaxClipValues> ddx{}, ddy{};
+};
+
 // The fragment's RGBA for `output`: the shader's colour, or a vision output (shade.hpp's
-// rules).
+// rules); a textured colour reads `derivatives`, its quad's.
 std::array<float, 4> shade(const PipelineState& pipeline, TargetOutput output,
                            const FragmentInputs& in,
                            const std::array<double, kMaxClipValues>& value, double w,
-                           uint32_t primitive) {
+                           uint32_t primitive, const Derivatives* derivatives) {
   const auto group = [&](uint32_t first) {
     return std::array<double, 3>{value[first], value[first + 1], value[first + 2]};
   };
@@ -236,6 +246,20 @@ std::array<float, 4> shade(const PipelineState& pipeline, TargetOutput output,
     return phong(pipeline.phong, group(pipeline.roles.normal), group(pipeline.roles.position),
                  base);
   }
+  if (pipeline.shader == FragmentShader::kTextured) {
+    // The texel (LOD from the quad's derivatives) times the colour varyings, or white.
+    const uint32_t t = pipeline.roles.texcoord;
+    const Texture& texture = *pipeline.texture;
+    const double lod = reference::texture_lod(texture, pipeline.sampler, derivatives->ddx[t],
+                                              derivatives->ddx[t + 1], derivatives->ddy[t],
+                                              derivatives->ddy[t + 1]);
+    const std::array<double, 4> texel =
+        reference::sample(texture, pipeline.sampler, value[t], value[t + 1], lod);
+    std::array<float, 4> out;
+    for (int c = 0; c < 4; ++c)
+      out[c] = static_cast<float>(texel[c] * (has_color ? value[color + c] : 1.0));
+    return out;
+  }
   std::array<float, 4> out = {0.0f, 0.0f, 0.0f, 1.0f};
   for (uint32_t c = 0; c < 4 && color + c < in.varyings; ++c)
     out[c] = static_cast<float>(value[color + c]);
@@ -252,12 +276,12 @@ struct TargetValues {
 // the built-in shaders and outputs; those a user function feeds are left to it.
 TargetValues built_in_values(const PipelineState& pipeline, const FragmentInputs& in,
                              const std::array<double, kMaxClipValues>& value, double w,
-                             uint32_t primitive) {
+                             uint32_t primitive, const Derivatives* derivatives = nullptr) {
   TargetValues out;
   for (uint32_t t = 0; t < in.targets; ++t) {
     const TargetOutput output = output_of(pipeline, t);
     if (output == TargetOutput::kColor && pipeline.shader == FragmentShader::kUser) continue;
-    out.rgba[t] = shade(pipeline, output, in, value, w, primitive);
+    out.rgba[t] = shade(pipeline, output, in, value, w, primitive, derivatives);
     out.id[t] = output == TargetOutput::kObjectId ? pipeline.object_id : primitive;
   }
   return out;
@@ -299,7 +323,11 @@ void flush_user_batch(detail::FramebufferStorage& fb, const PipelineState& pipel
                       const FragmentInputs& inputs, shade::UserBatch& batch,
                       const std::vector<UserSlot>& slots) {
   if (batch.empty()) return;
-  batch.run(pipeline.fragment_function);
+  if (inputs.function) {
+    batch.run(pipeline.fragment_function);
+  } else {
+    batch.keep_all();
+  }
   const bool write_depth = pipeline.depth_test && pipeline.depth_write;
   constexpr uint32_t kStride = shade::UserBatch::kStride;
   for (uint32_t f = 0; f < batch.size(); ++f) {
@@ -307,7 +335,8 @@ void flush_user_batch(detail::FramebufferStorage& fb, const PipelineState& pipel
     if (fragment == nullptr || batch.discarded(f)) continue;
     TargetValues values = slots[f].values;
     for (uint32_t t = 0; t < inputs.targets; ++t) {
-      if (output_of(pipeline, t) != TargetOutput::kColor) continue;
+      // The function's values for the targets it feeds.
+      if (!inputs.function || output_of(pipeline, t) != TargetOutput::kColor) continue;
       for (uint32_t c = 0; c < 4; ++c)
         values.rgba[t][c] = batch.target_color(t)[c * kStride + f];
       values.id[t] = batch.target_id(t)[f];
@@ -370,6 +399,19 @@ void shade_user_fragments(detail::FramebufferStorage& fb, const PipelineState& p
       evaluated[k] = interpolate(v, area, at_x[k], at_y[k], inputs, flat, values[k], w[k]);
     };
     evaluate(live);
+    // The quad's derivatives at its centre, or where that lies beyond the horizon at the live
+    // fragment's point.
+    Derivatives d;
+    std::array<double, kMaxClipValues> centre;
+    const int64_t cx = (qx * 16 + 16) << shift, cy = (qy * 16 + 16) << shift;
+    double centre_w = 1.0;
+    if (!interpolate(v, area, cx, cy, inputs, flat, centre, centre_w) ||
+        !derivatives(v, area, bits, cx, cy, inputs, centre, d.ddx, d.ddy)) {
+      derivatives(v, area, bits, at_x[live], at_y[live], inputs, values[live], d.ddx, d.ddy);
+    }
+    for (uint32_t j = 0; j < inputs.varyings; ++j) {
+      batch.set_derivatives(j, first, static_cast<float>(d.ddx[j]), static_cast<float>(d.ddy[j]));
+    }
     for (int k = 0; k < 4; ++k) {
       if (k != live) evaluate(k);
       if (!evaluated[k]) {
@@ -381,19 +423,9 @@ void shade_user_fragments(detail::FramebufferStorage& fb, const PipelineState& p
       UserSlot slot;
       if (quad[k] && masks[k] != 0) {
         slot.fragment = quad[k];
-        slot.values = built_in_values(pipeline, inputs, values[k], w[k], primitive);
+        slot.values = built_in_values(pipeline, inputs, values[k], w[k], primitive, &d);
       }
       slots.push_back(slot);
-    }
-    std::array<double, kMaxClipValues> centre, ddx, ddy;
-    const int64_t cx = (qx * 16 + 16) << shift, cy = (qy * 16 + 16) << shift;
-    double centre_w = 1.0;
-    if (!interpolate(v, area, cx, cy, inputs, flat, centre, centre_w) ||
-        !derivatives(v, area, bits, cx, cy, inputs, centre, ddx, ddy)) {
-      derivatives(v, area, bits, at_x[live], at_y[live], inputs, values[live], ddx, ddy);
-    }
-    for (uint32_t j = 0; j < inputs.varyings; ++j) {
-      batch.set_derivatives(j, first, static_cast<float>(ddx[j]), static_cast<float>(ddy[j]));
     }
   }
   flush_user_batch(fb, pipeline, inputs, batch, slots);
@@ -474,7 +506,7 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
           if (!detail::depth_passes(pipeline.depth_compare, depth, fb.depth[index])) continue;
           if (pipeline.depth_write) {
             // A user function's fragments are written after it, unless it discards them.
-            if (inputs.user) {
+            if (inputs.quads) {
               user.depth[s] = depth;
             } else {
               fb.depth[index] = depth;
@@ -487,7 +519,7 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
         if (first_passed < 0) first_passed = static_cast<int>(s);
       }
       if (first_passed < 0 || !pipeline.color_write) continue;
-      if (inputs.user) {
+      if (inputs.quads) {
         user_fragments.push_back(user);
         continue;
       }
@@ -531,7 +563,7 @@ void draw(detail::FramebufferStorage& fb, const PipelineState& pipeline, const D
   const FragmentInputs inputs = fragment_inputs(pipeline, attribute_count, shaded);
   const GuardBand guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
   std::optional<shade::UserBatch> batch;
-  if (inputs.user) {
+  if (inputs.quads) {
     batch.emplace(attribute_count,
                   std::span<const ColorFormat>(shaded.extra_formats.data(), shaded.extra_targets));
   }

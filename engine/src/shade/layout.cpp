@@ -99,6 +99,17 @@ Layout single_layout(const PipelineState& pipeline, TargetOutput output, uint32_
     }
     return layout;
   }
+  if (pipeline.shader == FragmentShader::kTextured) {
+    // The colour the texel is multiplied by (the quad back end samples the texture): the
+    // colour varyings when the draw has all four, else white.
+    if (color_count == 4) {
+      add_varyings(color, 4);
+      channels({0, 1, 2, 3}, {0, 0, 0, 1});
+    } else {
+      channels({k, k, k, k}, {1, 1, 1, 1});
+    }
+    return layout;
+  }
   // Gouraud: the setup's own colour planes when every colour varying is interpolated as the
   // pipeline's interpolation says (the setup interpolates all four alike).
   bool uniform = true;
@@ -117,33 +128,41 @@ Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count,
                   const FramebufferDesc& desc) {
   if (!pipeline.color_write) return {};
   const bool user = pipeline.shader == FragmentShader::kUser;
-  if (desc.extra_targets == 0 && !(user && pipeline.output == TargetOutput::kColor)) {
+  const bool textured = pipeline.shader == FragmentShader::kTextured;
+  if (desc.extra_targets == 0 && !((user || textured) && pipeline.output == TargetOutput::kColor)) {
     return single_layout(pipeline, pipeline.output, attribute_count, true);
   }
-  // The quad back end: the function's varyings, then each built-in target's interpolants, then
-  // the primitive index's bits.
+  // The quad back end: the varyings (for the function, or the texture coordinates and their
+  // derivatives), then each built-in target's interpolants, then the primitive index's bits.
   Layout layout;
   layout.shader = Shader::kUser;
   auto targets = std::make_shared<Targets>();
   targets->count = 1 + desc.extra_targets;
   targets->object_id = pipeline.object_id;
-  bool function = false;
+  bool function = false, sampled = false;
   for (uint32_t t = 0; t < targets->count; ++t) {
     TargetShading& target = targets->target[t];
     target.output = t == 0 ? pipeline.output : pipeline.extra_outputs[t - 1];
     target.format = t == 0 ? desc.color_format : desc.extra_formats[t - 1];
     target.from_function = user && target.output == TargetOutput::kColor;
+    target.textured = textured && target.output == TargetOutput::kColor;
     function = function || target.from_function;
+    sampled = sampled || target.textured;
   }
   const auto add = [&](const Interpolant& value) {
     layout.values[layout.count++] = value;
     layout.needs_q = layout.needs_q || value.mode == VaryingMode::kPerspective;
   };
-  if (function) {
+  if (function || sampled) {
     for (uint32_t i = 0; i < attribute_count; ++i)
       add({Source::kVarying, i, resolved_mode(pipeline, i)});
-    layout.function = &pipeline.fragment_function;
     layout.function_varyings = attribute_count;
+  }
+  if (function) layout.function = &pipeline.fragment_function;
+  if (sampled) {
+    targets->texture = pipeline.texture.get();
+    targets->sampler = pipeline.sampler;
+    targets->texcoord = pipeline.roles.texcoord;
   }
   for (uint32_t t = 0; t < targets->count; ++t) {
     TargetShading& target = targets->target[t];

@@ -22,8 +22,8 @@ enum class Shader : uint8_t {
   kInterpolated,  // each RGBA channel an interpolant or a constant
   kNormalized,    // interpolants 0..2 normalized, as RGB (A = 1): TargetOutput::kNormal
   kPhong,         // per-pixel Phong (PhongState) of the normal and position interpolants
-  kUser,          // the quad back end (user_batch.hpp), for a user FragmentFunction and for
-                  // framebuffers with several colour targets (Layout::targets)
+  kUser,          // the quad back end (user_batch.hpp), for a user FragmentFunction, textured
+                  // draws and framebuffers with several colour targets (Layout::targets)
 };
 inline constexpr int kShaders = 5;
 
@@ -79,9 +79,10 @@ struct Layout {
   bool has_color = false;
   PhongState phong{};  // the draw's material (phong.lights unused: see lights)
   std::array<PreparedLight, kMaxLights> lights{};
-  // kUser: the pipeline's function (valid for the draw) where a target takes its values, which
-  // then reads interpolants 0..function_varyings - 1 (the draw's varyings); each colour target's
-  // shading; and the last interpolant, the primitive index's bits.
+  // kUser: the pipeline's function (valid for the draw) where a target takes its values; the
+  // draw's varyings as interpolants 0..function_varyings - 1 when the function or a texture
+  // reads them; each colour target's shading; and the last interpolant, the primitive index's
+  // bits.
   const FragmentFunction* function = nullptr;
   uint32_t function_varyings = 0;
   std::shared_ptr<const Targets> targets;
@@ -92,6 +93,9 @@ struct TargetShading {
   ColorFormat format = ColorFormat::kRGBA8;
   TargetOutput output = TargetOutput::kColor;
   bool from_function = false;  // the user function's values
+  // FragmentShader::kTextured: Targets::texture sampled at the fragment's texture coordinates
+  // (the batch's varyings and derivatives), times the colour `layout` gives.
+  bool textured = false;
   // Otherwise kPrimitiveId and kObjectId come from the fragment's IDs, and the other outputs
   // from `layout` (kInterpolated, kNormalized or kPhong), whose interpolants are the draw's
   // from `first` on.
@@ -103,6 +107,11 @@ struct Targets {
   uint32_t count = 1;
   std::array<TargetShading, kMaxColorTargets> target{};
   uint32_t object_id = 0;
+  // A textured target's texture (the pipeline's, alive for the draw), sampler, and the first of
+  // its two texture coordinate varyings.
+  const Texture* texture = nullptr;
+  Sampler sampler;
+  uint32_t texcoord = 0;
 };
 
 // The layout of a draw with `attribute_count` varyings under `pipeline`'s shading state into a

@@ -36,9 +36,8 @@ void UserBatch::keep_all() {
   std::fill_n(buffers_->discard, count_, uint8_t{0});
 }
 
-void UserBatch::run(const FragmentFunction& function) {
-  Buffers& b = *buffers_;
-  keep_all();
+FragmentBatch UserBatch::view() const {
+  const Buffers& b = *buffers_;
   FragmentBatch batch;
   batch.count = count_;
   batch.varying_count = varying_count_;
@@ -49,6 +48,13 @@ void UserBatch::run(const FragmentFunction& function) {
   batch.varyings = b.varyings;
   batch.ddx = b.ddx;
   batch.ddy = b.ddy;
+  return batch;
+}
+
+void UserBatch::run(const FragmentFunction& function) {
+  Buffers& b = *buffers_;
+  keep_all();
+  const FragmentBatch batch = view();
   FragmentOutput output;
   output.color = b.color[0];
   output.discard = b.discard;

@@ -43,6 +43,8 @@ class UserBatch {
   // Varying v's derivatives, for the four fragments of the quad that starts at fragment i.
   void set_derivatives(uint32_t v, uint32_t i, float ddx, float ddy);
 
+  // The batch as a function sees it (its positions, masks, IDs, varyings and derivatives).
+  FragmentBatch view() const;
   // Calls `function` on the batch, with every discard flag cleared first.
   void run(const FragmentFunction& function);
   // Clears every discard flag, for a batch no function runs on (built-in targets only).

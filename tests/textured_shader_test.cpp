@@ -1,0 +1,316 @@
+// The built-in textured shader (FragmentShader::kTextured): the texel at the texture
+// coordinates, its level of detail from each 2x2 quad's derivatives, times the colour varyings.
+// The fast engine (float sampler) against the reference (the double sampler, the oracle) on
+// every SIMD target and thread count, for every filter and wrap mode; texture files through
+// OpenImageIO; and every bad state an error naming it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tessera/io.hpp"
+#include "tessera/tessera.hpp"
+#include "tests/shading_scene.hpp"
+#include "tests/temp_dir.hpp"
+
+namespace tessera {
+namespace {
+
+using shading_scene::kClear;
+using shading_scene::kHeight;
+using shading_scene::kWidth;
+using shading_scene::Mesh;
+using shading_scene::Target;
+using shading_scene::test_mesh;
+using test::TempDir;
+
+// A 64x32 RGBA8 texture of coloured checks of 4 texels with a ramp across them, so that every
+// filter and mip level gives distinct values, with its mip chain.
+std::shared_ptr<const Texture> checks() {
+  constexpr uint32_t w = 64, h = 32;
+  std::vector<uint8_t> p;
+  for (uint32_t y = 0; y < h; ++y) {
+    for (uint32_t x = 0; x < w; ++x) {
+      const bool odd = ((x / 4) + (y / 4)) % 2 != 0;
+      p.push_back(static_cast<uint8_t>(odd ? 230 : 20 + x));
+      p.push_back(static_cast<uint8_t>(odd ? 40 + 3 * y : 200));
+      p.push_back(static_cast<uint8_t>((x * 7 + y * 3) % 256));
+      p.push_back(static_cast<uint8_t>(odd ? 255 : 128));
+    }
+  }
+  return std::make_shared<Texture>(TextureDesc{w, h, TextureFormat::kRGBA8},
+                                   std::as_bytes(std::span<const uint8_t>(p)), true);
+}
+
+// The scene's eye-space position x and y (varyings 7 and 8) as (u, v): about three repeats of
+// the texture across the near sheet, minified on the far ones.
+PipelineState textured(const Sampler& sampler) {
+  PipelineState p;
+  p.shader = FragmentShader::kTextured;
+  p.texture = checks();
+  p.sampler = sampler;
+  p.roles.texcoord = 7;
+  return p;
+}
+
+using shading_scene::Image;
+
+Image render(const PipelineState& pipeline, ColorFormat format, uint32_t samples, Backend backend,
+             Target target = {SimdTarget::kAuto, 1}) {
+  return shading_scene::render(test_mesh(), pipeline, format, samples, backend, target);
+}
+
+struct Case {
+  std::string name;
+  Sampler sampler;
+};
+
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  const auto add = [&](const std::string& name, Filter filter, MipFilter mip, Wrap wrap) {
+    Sampler s;
+    s.mag_filter = s.min_filter = filter;
+    s.mip_filter = mip;
+    s.wrap_u = s.wrap_v = wrap;
+    s.border_color = {0.25f, 0.5f, 1.0f, 1.0f};
+    out.push_back({name, s});
+  };
+  add("nearest, no mips, repeat", Filter::kNearest, MipFilter::kNone, Wrap::kRepeat);
+  add("bilinear, no mips, repeat", Filter::kLinear, MipFilter::kNone, Wrap::kRepeat);
+  add("bilinear, nearest mip, mirrored", Filter::kLinear, MipFilter::kNearest,
+      Wrap::kMirroredRepeat);
+  add("trilinear, repeat", Filter::kLinear, MipFilter::kLinear, Wrap::kRepeat);
+  add("trilinear, clamp to edge", Filter::kLinear, MipFilter::kLinear, Wrap::kClampToEdge);
+  add("trilinear, clamp to border", Filter::kLinear, MipFilter::kLinear, Wrap::kClampToBorder);
+  add("nearest, nearest mip, clamp to border", Filter::kNearest, MipFilter::kNearest,
+      Wrap::kClampToBorder);
+  Sampler biased = out[3].sampler;
+  biased.lod_bias = 1.5f;
+  biased.max_lod = 3.0f;
+  out.push_back({"trilinear, LOD bias 1.5, max LOD 3", biased});
+  return out;
+}
+
+// Every filter and wrap mode: every SIMD target and thread count gives the same bytes; against
+// the reference, RGBA8 within one step where a linear filter blends (nearest texels or levels
+// may differ only where float and double fall on the two sides of a texel edge or a level
+// switch: counted, and under 0.5% of the covered pixels), RGBA32F within 1e-4.
+TEST(TexturedShader, MatchesTheReferenceOnEveryTargetAndThreadCount) {
+  const std::vector<Target> targets = shading_scene::fast_targets();
+  ASSERT_FALSE(targets.empty());
+  for (const Case& c : cases()) {
+    const PipelineState p = textured(c.sampler);
+    const bool nearest =
+        c.sampler.min_filter == Filter::kNearest || c.sampler.mip_filter == MipFilter::kNearest;
+    for (uint32_t samples : {1u, 4u}) {
+      const std::string where = c.name + ", " + std::to_string(samples) + " samples";
+      const Image want = render(p, ColorFormat::kRGBA8, samples, Backend::kReference);
+      const Image got = render(p, ColorFormat::kRGBA8, samples, Backend::kFast, targets[0]);
+      for (const Target& t : targets) {
+        ASSERT_EQ(render(p, ColorFormat::kRGBA8, samples, Backend::kFast, t).rgba8, got.rgba8)
+            << where << ", target " << int(t.simd) << ", " << t.threads << " threads";
+      }
+      size_t covered = 0, off = 0;
+      for (size_t i = 0; i < want.rgba8.size(); i += 4) {
+        ASSERT_EQ(want.rgba8[i + 3] == 0, got.rgba8[i + 3] == 0) << where << ": pixel " << i / 4;
+        covered += want.rgba8[i + 3] != 0;
+        int worst = 0;
+        for (size_t k = 0; k < 4; ++k)
+          worst = std::max(worst, std::abs(int{want.rgba8[i + k]} - got.rgba8[i + k]));
+        if (!nearest) {
+          ASSERT_LE(worst, 1) << where << ": pixel " << i / 4;
+        }
+        off += worst > 1;
+      }
+      EXPECT_GT(covered, size_t{kWidth * kHeight / 2}) << where;
+      EXPECT_LE(off * 200, covered) << where << ": " << off << " pixels differ by more than 1";
+      std::printf("%s: %zu of %zu pixels differ by more than one step\n", where.c_str(), off,
+                  covered);
+      if (samples == 1 && !nearest) {
+        const Image want32 = render(p, ColorFormat::kRGBA32F, 1, Backend::kReference);
+        const Image got32 = render(p, ColorFormat::kRGBA32F, 1, Backend::kFast);
+        for (size_t i = 0; i < want32.rgba32f.size(); ++i) {
+          ASSERT_EQ(want32.rgba32f[i] == kClear, got32.rgba32f[i] == kClear) << where << ": " << i;
+          ASSERT_LE(std::abs(want32.rgba32f[i] - got32.rgba32f[i]), 1e-4f) << where << ": " << i;
+        }
+      }
+    }
+  }
+}
+
+// The colour varyings scale the texel; without four of them the texel is drawn as it is.
+TEST(TexturedShader, TheColourVaryingsScaleTheTexel) {
+  Sampler s;
+  s.mip_filter = MipFilter::kNone;
+  PipelineState white = textured(s);
+  white.roles.color = 10;  // past the draw's 10 varyings: no colour
+  const PipelineState coloured = textured(s);
+  for (Backend backend : {Backend::kReference, Backend::kFast}) {
+    const Image plain = render(white, ColorFormat::kRGBA32F, 1, backend);
+    const Image scaled = render(coloured, ColorFormat::kRGBA32F, 1, backend);
+    const Image colour = render(PipelineState{}, ColorFormat::kRGBA32F, 1, backend);
+    size_t checked = 0;
+    for (size_t i = 0; i < plain.rgba32f.size(); ++i) {
+      if (plain.rgba32f[i] == kClear) continue;
+      ASSERT_NEAR(scaled.rgba32f[i], plain.rgba32f[i] * colour.rgba32f[i], 2e-6f) << i;
+      ++checked;
+    }
+    EXPECT_GT(checked, size_t{kWidth * kHeight});
+  }
+}
+
+// A full-window quad whose (u, v) runs over [0, 1] at the texture's own size draws each texel
+// on its pixel, exactly, with the nearest and the linear filter alike (every pixel centre is a
+// texel centre), through MSAA too.
+TEST(TexturedShader, ATextureMappedOneToOneDrawsItsTexels) {
+  constexpr uint32_t w = 24, h = 16;
+  std::vector<uint8_t> texels(w * h * 4);
+  for (size_t i = 0; i < texels.size(); ++i)
+    texels[i] = static_cast<uint8_t>((i * 37 + i / 7) % 256);
+  const auto texture =
+      std::make_shared<Texture>(TextureDesc{w, h, TextureFormat::kRGBA8},
+                                std::as_bytes(std::span<const uint8_t>(texels)), false);
+  const std::vector<Float4> positions = {{-1, 1, 0.5f, 1}, {1, 1, 0.5f, 1},  {1, -1, 0.5f, 1},
+                                         {-1, 1, 0.5f, 1}, {1, -1, 0.5f, 1}, {-1, -1, 0.5f, 1}};
+  const std::vector<float> uv = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+  for (Filter filter : {Filter::kNearest, Filter::kLinear}) {
+    for (uint32_t samples : {1u, 4u}) {
+      for (Backend backend : {Backend::kReference, Backend::kFast}) {
+        PipelineState p;
+        p.shader = FragmentShader::kTextured;
+        p.texture = texture;
+        p.roles.texcoord = 0;
+        p.sampler.mag_filter = p.sampler.min_filter = filter;
+        RendererOptions options;
+        options.backend = backend;
+        options.threads = 2;
+        Renderer renderer(options);
+        Framebuffer fb({w, h, samples, ColorFormat::kRGBA8});
+        renderer.draw(fb, p, {positions, uv, 2, {}});
+        EXPECT_EQ(fb.read_rgba8(), texels)
+            << int(filter) << ", " << samples << " samples, backend " << int(backend);
+      }
+    }
+  }
+}
+
+template <typename F>
+void expect_error(F&& f, const std::string& words) {
+  try {
+    f();
+    ADD_FAILURE() << "no error; expected one naming " << words;
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument) << e.what();
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  }
+}
+
+TEST(TexturedShader, BadStatesAreErrorsThatDrawNothing) {
+  const Mesh mesh = test_mesh();
+  for (Backend backend : {Backend::kReference, Backend::kFast}) {
+    RendererOptions options;
+    options.backend = backend;
+    Renderer renderer(options);
+    Framebuffer fb({kWidth, kHeight, 1, ColorFormat::kRGBA8});
+    const auto draw_error = [&](const PipelineState& p, const std::string& words) {
+      expect_error([&] { renderer.draw(fb, p, mesh.input()); }, words);
+      EXPECT_EQ(fb.read_depth(), std::vector<float>(kWidth * kHeight, 1.0f)) << words;
+    };
+    PipelineState p = textured(Sampler{});
+    p.texture = nullptr;
+    draw_error(p, "needs a texture");
+    p = textured(Sampler{});
+    p.roles.texcoord = 9;  // 9..10 of 10 varyings
+    draw_error(p, "roles.texcoord");
+    p = textured(Sampler{});
+    p.sampler.wrap_v = static_cast<Wrap>(7);
+    draw_error(p, "sampler.wrap_v");
+    p = textured(Sampler{});
+    p.sampler.mip_filter = static_cast<MipFilter>(5);
+    draw_error(p, "sampler.mip_filter");
+    p = textured(Sampler{});
+    p.sampler.min_lod = 4;
+    p.sampler.max_lod = 2;
+    draw_error(p, "min_lod");
+    p = textured(Sampler{});
+    p.sampler.lod_bias = std::nanf("");
+    draw_error(p, "lod_bias");
+    p = textured(Sampler{});
+    p.sampler.border_color[2] = INFINITY;
+    draw_error(p, "border_color");
+    p = textured(Sampler{});
+    p.shader = static_cast<FragmentShader>(9);
+    draw_error(p, "shader");
+  }
+}
+
+// Image files through OpenImageIO: 8-bit files as RGBA8 (sRGB when asked) or R8, deeper ones as
+// float; grey and grey-alpha expanded; the texels as the file holds them.
+TEST(TexturedShader, TexturesLoadFromImageFiles) {
+  TempDir dir;
+  // RGBA8 PNG.
+  std::vector<uint8_t> rgba(5 * 3 * 4);
+  for (size_t i = 0; i < rgba.size(); ++i)
+    rgba[i] = static_cast<uint8_t>(i * 11);
+  write_image(dir / "rgba.png", 5, 3, 4, std::span<const uint8_t>(rgba));
+  const Texture t = load_texture(dir / "rgba.png", false, true);
+  EXPECT_EQ(t.desc().format, TextureFormat::kRGBA8);
+  EXPECT_EQ(t.desc().width, 5u);
+  EXPECT_EQ(t.desc().height, 3u);
+  EXPECT_EQ(t.levels(), 3u);
+  const std::span<const std::byte> level0 = t.level_bytes(0);
+  ASSERT_EQ(level0.size(), rgba.size());
+  EXPECT_TRUE(std::equal(rgba.begin(), rgba.end(), level0.begin(),
+                         [](uint8_t a, std::byte b) { return a == std::to_integer<uint8_t>(b); }));
+  EXPECT_EQ(load_texture(dir / "rgba.png", true, false).desc().format, TextureFormat::kRGBA8Srgb);
+  // RGB: alpha 1. Grey + alpha: (g, g, g, a). Grey: R8.
+  const std::vector<uint8_t> rgb = {10, 20, 30, 40, 50, 60};
+  write_image(dir / "rgb.png", 2, 1, 3, std::span<const uint8_t>(rgb));
+  EXPECT_EQ(load_texture(dir / "rgb.png", false, false).texel(0, 1, 0),
+            (std::array<float, 4>{40 / 255.0f, 50 / 255.0f, 60 / 255.0f, 1.0f}));
+  const std::vector<uint8_t> ga = {100, 200};
+  write_image(dir / "ga.png", 1, 1, 2, std::span<const uint8_t>(ga));
+  EXPECT_EQ(load_texture(dir / "ga.png", false, false).texel(0, 0, 0),
+            (std::array<float, 4>{100 / 255.0f, 100 / 255.0f, 100 / 255.0f, 200 / 255.0f}));
+  write_image(dir / "g.png", 1, 1, 1, std::span<const uint8_t>(ga.data(), 1));
+  EXPECT_EQ(load_texture(dir / "g.png", false, false).desc().format, TextureFormat::kR8);
+  // Float EXR: RGBA32F, values as stored; with srgb the colour decoded, alpha not.
+  const std::vector<float> f = {0.5f, 2.0f, -1.0f, 0.25f};
+  write_image(dir / "f.exr", 1, 1, 4, std::span<const float>(f));
+  const Texture ft = load_texture(dir / "f.exr", false, false);
+  EXPECT_EQ(ft.desc().format, TextureFormat::kRGBA32F);
+  EXPECT_EQ(ft.texel(0, 0, 0), (std::array<float, 4>{0.5f, 2.0f, -1.0f, 0.25f}));
+  const std::array<float, 4> decoded = load_texture(dir / "f.exr", true, false).texel(0, 0, 0);
+  EXPECT_NEAR(decoded[0], 0.2140411f, 1e-6f);  // ((0.5 + 0.055) / 1.055)^2.4
+  EXPECT_EQ(decoded[3], 0.25f);
+  const std::vector<float> one = {0.75f};
+  write_image(dir / "r.exr", 1, 1, 1, std::span<const float>(one));
+  EXPECT_EQ(load_texture(dir / "r.exr", false, false).desc().format, TextureFormat::kR32F);
+  // Errors name the file.
+  try {
+    load_texture(dir / "missing.png", false, false);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kIo);
+    EXPECT_NE(std::string(e.what()).find("missing.png"), std::string::npos) << e.what();
+  }
+  const std::vector<uint8_t> wide(16385, 7);
+  write_image(dir / "wide.png", 16385, 1, 1, std::span<const uint8_t>(wide));
+  try {
+    load_texture(dir / "wide.png", false, false);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
+    EXPECT_NE(std::string(e.what()).find("wide.png: 16385x1"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tessera
