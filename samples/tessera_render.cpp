@@ -209,17 +209,20 @@ void draw_job(tessera::Renderer& renderer, tessera::Framebuffer& fb,
 }
 
 // A mesh, or for --points (and for a PLY file without faces, a point cloud) every vertex.
-tessera::Mesh load_input(const std::string& path, Mode& mode) {
-  if (mode == Mode::kPoints) return tessera::load_point_cloud(path);
+// Triangles: one object per material, textured where the material has a base colour texture.
+// Wireframes: one mesh.
+std::vector<tessera::SceneObject> load_input(const std::string& path, Mode& mode) {
+  if (mode == Mode::kPoints) return {{tessera::load_point_cloud(path)}};
   try {
-    return tessera::load_mesh(path);
+    if (mode == Mode::kWireframe) return {{tessera::load_mesh(path)}};
+    return tessera::load_scene_objects(path);
   } catch (const tessera::Error& e) {
     const bool ply = std::filesystem::path(path).extension() == ".ply" ||
                      std::filesystem::path(path).extension() == ".PLY";
     if (!ply || std::string(e.what()).find("no triangles") == std::string::npos) throw;
   }
   mode = Mode::kPoints;
-  return tessera::load_point_cloud(path);
+  return {{tessera::load_point_cloud(path)}};
 }
 
 bool has_extension(const std::string& path, const char* ext) {
@@ -413,7 +416,7 @@ int run(const Options& o, const CLI::App& app) {
       job.scene = tessera::make_demo_scene();
     } else {
       job.scene.emplace();
-      job.scene->objects.push_back({load_input(o.input, job.mode), glm::mat4(1.0f)});
+      job.scene->objects = load_input(o.input, job.mode);
       job.scene->camera = tessera::frame_bounds(job.scene->bounds(), float(width) / float(height),
                                                 {0.55f, 0.45f, 1.0f}, o.fov);
     }

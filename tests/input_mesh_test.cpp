@@ -4,11 +4,14 @@
 // ship with Assimp (scripts/install-deps.sh installs them) load or are rejected as they should.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <initializer_list>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -188,6 +191,75 @@ TEST(MeshLoading, ObjMaterialDiffuseColourIsTheMeshColour) {
   expect_unit_quad(mesh);
   for (const glm::vec4& c : mesh.colors)
     EXPECT_EQ(c, glm::vec4(1, 0.25f, 0, 1));
+}
+
+// OBJ with MTL: one object per material; map_Kd becomes the object's sRGB texture (mip chain
+// generated), vt the texture coordinates with v flipped to run down from the image's top row.
+TEST(MeshLoading, ObjMapKdBecomesTheObjectsTexture) {
+  TempDir dir;
+  const std::vector<uint8_t> texels = {255, 0, 0,   255, 0, 255, 0, 255,
+                                       0,   0, 255, 255, 9, 9,   9, 255};
+  write_image(dir / "tex.png", 2, 2, 4, std::span<const uint8_t>(texels));
+  write_file(dir / "two.mtl",
+             "newmtl textured\nKd 1 1 1\nmap_Kd tex.png\nnewmtl plain\nKd 0 1 0\n");
+  write_file(dir / "two.obj",
+             "mtllib two.mtl\n"
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+             "v 2 0 0\nv 3 0 0\nv 3 1 0\n"
+             "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+             "usemtl textured\nf 1/1 2/2 3/3 4/4\n"
+             "usemtl plain\nf 5 6 7\n");
+  const std::vector<SceneObject> objects = load_scene_objects(dir / "two.obj");
+  ASSERT_EQ(objects.size(), 2u);
+  const SceneObject* textured = objects[0].texture ? &objects[0] : &objects[1];
+  const SceneObject* plain = objects[0].texture ? &objects[1] : &objects[0];
+  ASSERT_NE(textured->texture, nullptr);
+  EXPECT_EQ(plain->texture, nullptr);
+  EXPECT_EQ(plain->mesh.colors[0], glm::vec4(0, 1, 0, 1));
+  EXPECT_EQ(textured->texture->desc().format, TextureFormat::kRGBA8Srgb);
+  EXPECT_EQ(textured->texture->desc().width, 2u);
+  EXPECT_EQ(textured->texture->levels(), 2u);
+  EXPECT_EQ(textured->mesh.indices.size(), 6u);
+  ASSERT_EQ(textured->mesh.texcoords.size(), textured->mesh.positions.size());
+  for (size_t i = 0; i < textured->mesh.positions.size(); ++i) {
+    // vt (x, y) at position (x, y): flipped, (x, 1 - y).
+    const glm::vec3& p = textured->mesh.positions[i];
+    EXPECT_EQ(textured->mesh.texcoords[i], glm::vec2(p.x, 1.0f - p.y)) << i;
+  }
+  // The texture as the file holds it: texel (0, 0) red.
+  EXPECT_EQ(textured->texture->texel(0, 0, 0), (std::array<float, 4>{1, 0, 0, 1}));
+  // A missing texture file is an error naming it.
+  write_file(dir / "missing.mtl", "newmtl t\nmap_Kd nowhere.png\n");
+  write_file(dir / "missing.obj",
+             "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
+             "usemtl t\nf 1/1 2/2 3/3\n");
+  try {
+    load_scene_objects(dir / "missing.obj");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kIo);
+    EXPECT_NE(std::string(e.what()).find("nowhere.png"), std::string::npos) << e.what();
+  }
+}
+
+// glTF 2.0's baseColorTexture, embedded in a .glb (PNG bytes decoded from memory) and in a
+// .gltf beside it, from Assimp's test models (skipped without them).
+TEST(MeshLoading, GltfBaseColourTexturesLoadEmbeddedAndFromFiles) {
+  const std::filesystem::path models = "/usr/share/assimp/models/glTF2";
+  for (const char* file :
+       {"BoxTextured-glTF-Binary/BoxTextured.glb", "BoxTextured-glTF/BoxTextured.gltf",
+        "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+    if (!std::filesystem::exists(models / file)) GTEST_SKIP() << "no " << (models / file);
+    const std::vector<SceneObject> objects = load_scene_objects(models / file);
+    ASSERT_EQ(objects.size(), 1u) << file;
+    const SceneObject& box = objects[0];
+    ASSERT_NE(box.texture, nullptr) << file;
+    EXPECT_EQ(box.texture->desc().format, TextureFormat::kRGBA8Srgb) << file;
+    EXPECT_GT(box.texture->desc().width, 1u) << file;
+    EXPECT_GT(box.texture->levels(), 1u) << file;
+    EXPECT_EQ(box.mesh.texcoords.size(), box.mesh.positions.size()) << file;
+    EXPECT_EQ(box.mesh.indices.size(), 36u) << file;
+  }
 }
 
 TEST(MeshLoading, PlyQuadWithVertexColoursLoads) {

@@ -201,6 +201,46 @@ TEST(TexturedShader, ATextureMappedOneToOneDrawsItsTexels) {
   }
 }
 
+// The demo scene's tiled ground through draw_scene, per vertex and per pixel: both backends
+// within one step, the tiles visible (the ground is not one flat colour).
+TEST(TexturedShader, TheDemoScenesTexturedGroundDrawsAlikeOnBothBackends) {
+  const Scene scene = make_demo_scene();
+  ASSERT_NE(scene.objects[0].texture, nullptr);
+  for (SceneShading shading : {SceneShading::kPerVertex, SceneShading::kPerPixel}) {
+    std::vector<uint8_t> image[2];
+    for (Backend backend : {Backend::kReference, Backend::kFast}) {
+      RendererOptions options;
+      options.backend = backend;
+      options.threads = 2;
+      Renderer renderer(options);
+      Framebuffer fb({160, 100, 1, ColorFormat::kRGBA8});
+      draw_scene(renderer, fb, PipelineState{}, scene, shading);
+      image[backend == Backend::kFast ? 1 : 0] = fb.read_rgba8();
+    }
+    size_t differ = 0;
+    for (size_t i = 0; i < image[0].size(); ++i)
+      differ += std::abs(int{image[0][i]} - image[1][i]) > 1;
+    EXPECT_EQ(differ, 0u) << int(shading);
+    // The bottom row is ground: its tiles' joints make it vary.
+    const auto [lo, hi] = std::minmax_element(image[1].end() - 160 * 4, image[1].end());
+    EXPECT_GT(*hi - *lo, 40) << int(shading);
+  }
+  // A textured object without texture coordinates is an error, and nothing is drawn.
+  Scene bad = scene;
+  bad.objects[0].mesh.texcoords.clear();
+  Renderer renderer;
+  Framebuffer fb({160, 100, 1, ColorFormat::kRGBA8});
+  try {
+    draw_scene(renderer, fb, PipelineState{}, bad);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("scene object 0 has a texture but 0 texture coordinates"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(fb.read_depth(), std::vector<float>(160 * 100, 1.0f));
+}
+
 template <typename F>
 void expect_error(F&& f, const std::string& words) {
   try {

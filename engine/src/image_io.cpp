@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include "engine/src/image_decode.hpp"
 #include "engine/src/texture/texture_storage.hpp"
 #include "tessera/error.hpp"
 
@@ -84,10 +86,13 @@ Image read_image(const std::filesystem::path& path) {
   return image;
 }
 
-Texture load_texture(const std::filesystem::path& path, bool srgb, bool mipmaps) {
-  auto in = OIIO::ImageInput::open(path.string(), &unassociated_alpha());
-  if (!in) throw Error(ErrorCode::kIo, path.string() + ": cannot read: " + OIIO::geterror());
+namespace {
+
+// The texture an opened image holds; `what` names it in errors.
+Texture texture_from(OIIO::ImageInput& input, const std::string& what, bool srgb, bool mipmaps) {
+  OIIO::ImageInput* in = &input;
   const OIIO::ImageSpec& spec = in->spec();
+  const std::filesystem::path path = what;
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
     throw Error(ErrorCode::kIo, path.string() + ": empty image");
   }
@@ -146,6 +151,25 @@ Texture load_texture(const std::filesystem::path& path, bool srgb, bool mipmaps)
   }
   const TextureFormat format = channels == 1 ? TextureFormat::kR32F : TextureFormat::kRGBA32F;
   return Texture({width, height, format}, std::as_bytes(std::span<const float>(texture)), mipmaps);
+}
+
+}  // namespace
+
+Texture load_texture(const std::filesystem::path& path, bool srgb, bool mipmaps) {
+  auto in = OIIO::ImageInput::open(path.string(), &unassociated_alpha());
+  if (!in) throw Error(ErrorCode::kIo, path.string() + ": cannot read: " + OIIO::geterror());
+  return texture_from(*in, path.string(), srgb, mipmaps);
+}
+
+Texture decode_texture(const std::string& what, const std::string& name,
+                       std::span<const std::byte> bytes, bool srgb, bool mipmaps) {
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  OIIO::ImageSpec config = unassociated_alpha();
+  OIIO::Filesystem::IOProxy* proxy = &memory;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  auto in = OIIO::ImageInput::open(name, &config, &memory);
+  if (!in) throw Error(ErrorCode::kIo, what + ": cannot decode: " + OIIO::geterror());
+  return texture_from(*in, what, srgb, mipmaps);
 }
 
 }  // namespace tessera

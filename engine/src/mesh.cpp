@@ -57,6 +57,12 @@ void append_mesh(Mesh& mesh, const Mesh& other) {
   mesh.positions.insert(mesh.positions.end(), other.positions.begin(), other.positions.end());
   mesh.normals.insert(mesh.normals.end(), other.normals.begin(), other.normals.end());
   mesh.colors.insert(mesh.colors.end(), other.colors.begin(), other.colors.end());
+  // Texture coordinates when either has them, (0, 0) for the vertices of the other.
+  if (!mesh.texcoords.empty() || !other.texcoords.empty()) {
+    mesh.texcoords.resize(base, glm::vec2(0.0f));
+    mesh.texcoords.insert(mesh.texcoords.end(), other.texcoords.begin(), other.texcoords.end());
+    mesh.texcoords.resize(mesh.positions.size(), glm::vec2(0.0f));
+  }
   for (uint32_t i : other.indices)
     mesh.indices.push_back(base + i);
 }

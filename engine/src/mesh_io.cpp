@@ -17,7 +17,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <mutex>
+#include <span>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -35,7 +37,9 @@
 #include <assimp/LogStream.hpp>
 #include <glm/geometric.hpp>
 
+#include "engine/src/image_decode.hpp"
 #include "tessera/error.hpp"
+#include "tessera/image_io.hpp"
 #include "tessera/mesh_io.hpp"
 
 namespace tessera {
@@ -467,7 +471,58 @@ glm::vec4 material_color(const aiScene& scene, unsigned material_index) {
 
 namespace {
 
-Mesh load(const std::filesystem::path& path, bool point_cloud) {
+// The base colour texture of material `index` (glTF's baseColorTexture, OBJ's map_Kd), from
+// its file beside the model or embedded in it, and its sampler (wrap modes; glTF's
+// magnification filter); null when the material has none.
+std::shared_ptr<const Texture> material_texture(const std::filesystem::path& path,
+                                                const aiScene& scene, unsigned index,
+                                                Sampler& sampler) {
+  if (index >= scene.mNumMaterials) return nullptr;
+  const aiMaterial& m = *scene.mMaterials[index];
+  aiTextureType type = aiTextureType_BASE_COLOR;
+  if (m.GetTextureCount(type) == 0) type = aiTextureType_DIFFUSE;
+  aiString name;
+  if (m.GetTextureCount(type) == 0 || m.GetTexture(type, 0, &name) != aiReturn_SUCCESS) {
+    return nullptr;
+  }
+  const auto wrap_of = [&](const char* key, unsigned semantic) {
+    int mode = aiTextureMapMode_Wrap;
+    m.Get(key, type, semantic, mode);
+    return mode == aiTextureMapMode_Clamp    ? Wrap::kClampToEdge
+           : mode == aiTextureMapMode_Mirror ? Wrap::kMirroredRepeat
+           : mode == aiTextureMapMode_Decal  ? Wrap::kClampToBorder
+                                             : Wrap::kRepeat;
+  };
+  sampler.wrap_u = wrap_of(_AI_MATKEY_MAPPINGMODE_U_BASE, 0);
+  sampler.wrap_v = wrap_of(_AI_MATKEY_MAPPINGMODE_V_BASE, 0);
+  const std::string file = name.C_Str();
+  // Colour textures are sRGB-encoded (glTF 2.0 section 3.9.2; the de facto rule for OBJ).
+  if (const aiTexture* embedded = scene.GetEmbeddedTexture(name.C_Str())) {
+    if (embedded->mHeight == 0) {  // a compressed file (PNG, JPEG, ...) in memory
+      const std::string hint = embedded->achFormatHint;
+      return std::make_shared<Texture>(decode_texture(
+          path.string() + " (embedded texture " + file + ")", "texture." + hint,
+          std::span<const std::byte>(reinterpret_cast<const std::byte*>(embedded->pcData),
+                                     embedded->mWidth),
+          true, true));
+    }
+    std::vector<uint8_t> texels;
+    texels.reserve(size_t{embedded->mWidth} * embedded->mHeight * 4);
+    for (size_t i = 0; i < size_t{embedded->mWidth} * embedded->mHeight; ++i) {
+      const aiTexel& t = embedded->pcData[i];
+      texels.insert(texels.end(), {t.r, t.g, t.b, t.a});
+    }
+    return std::make_shared<Texture>(
+        TextureDesc{embedded->mWidth, embedded->mHeight, TextureFormat::kRGBA8Srgb},
+        std::as_bytes(std::span<const uint8_t>(texels)), true);
+  }
+  std::string relative = file;
+  std::replace(relative.begin(), relative.end(), '\\', '/');
+  return std::make_shared<Texture>(load_texture(path.parent_path() / relative, true, true));
+}
+
+Mesh load(const std::filesystem::path& path, bool point_cloud,
+          std::vector<SceneObject>* objects = nullptr) {
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status))
@@ -560,18 +615,23 @@ Mesh load(const std::filesystem::path& path, bool point_cloud) {
   // Assimp's own structural validation, then: polygons triangulated, points and lines sorted
   // out, node transforms applied, shared vertices merged.
   check(importer.ApplyPostProcessing(aiProcess_ValidateDataStructure));
+  // Texture coordinates flipped to Tessera's convention: v down from the image's top row.
   scene = check(importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType |
                                              aiProcess_PreTransformVertices |
-                                             aiProcess_JoinIdenticalVertices));
+                                             aiProcess_JoinIdenticalVertices | aiProcess_FlipUVs));
   if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
     bad(path, "incomplete scene (Assimp could not read all of it)");
   }
 
-  Mesh mesh;
-  bool all_have_normals = true;
+  // One mesh, or with `objects` one per material.
+  std::vector<Mesh> meshes(objects != nullptr ? std::max(1u, scene->mNumMaterials) : 1);
+  std::vector<bool> all_have_normals(meshes.size(), true), any_texcoords(meshes.size(), false);
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh& am = *scene->mMeshes[m];
     if ((am.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
+    const size_t which =
+        objects != nullptr ? std::min<size_t>(am.mMaterialIndex, meshes.size() - 1) : 0;
+    Mesh& mesh = meshes[which];
     if (mesh.positions.size() + am.mNumVertices > UINT32_MAX) {
       bad(path, "more than 2^32 vertices in all meshes together");
     }
@@ -597,8 +657,14 @@ Mesh load(const std::filesystem::path& path, bool point_cloud) {
         mesh.normals.emplace_back(am.mNormals[v].x, am.mNormals[v].y, am.mNormals[v].z);
       } else {
         mesh.normals.emplace_back(0.0f);
-        all_have_normals = false;
+        all_have_normals[which] = false;
       }
+      glm::vec2 uv(0.0f);
+      if (am.HasTextureCoords(0) && finite(am.mTextureCoords[0][v])) {
+        uv = {am.mTextureCoords[0][v].x, am.mTextureCoords[0][v].y};
+        any_texcoords[which] = true;
+      }
+      mesh.texcoords.push_back(uv);
     }
     for (unsigned f = 0; f < am.mNumFaces; ++f) {
       const aiFace& face = am.mFaces[f];
@@ -613,11 +679,28 @@ Mesh load(const std::filesystem::path& path, bool point_cloud) {
       }
     }
   }
-  if (mesh.indices.empty()) {
+  size_t triangles = 0;
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    triangles += meshes[k].indices.size();
+    if (!any_texcoords[k]) meshes[k].texcoords.clear();
+    if (!all_have_normals[k]) compute_normals(meshes[k]);
+  }
+  if (triangles == 0) {
     bad(path, "no triangles to draw (the file holds only points, lines or nothing)");
   }
-  if (!all_have_normals) compute_normals(mesh);
-  return mesh;
+  if (objects != nullptr) {
+    for (size_t k = 0; k < meshes.size(); ++k) {
+      if (meshes[k].indices.empty()) continue;
+      SceneObject o;
+      o.mesh = std::move(meshes[k]);
+      if (!o.mesh.texcoords.empty()) {
+        o.texture = material_texture(path, *scene, static_cast<unsigned>(k), o.sampler);
+      }
+      objects->push_back(std::move(o));
+    }
+    return {};
+  }
+  return std::move(meshes[0]);
 }
 
 }  // namespace
@@ -628,6 +711,12 @@ Mesh load_mesh(const std::filesystem::path& path) {
 
 Mesh load_point_cloud(const std::filesystem::path& path) {
   return load(path, true);
+}
+
+std::vector<SceneObject> load_scene_objects(const std::filesystem::path& path) {
+  std::vector<SceneObject> objects;
+  load(path, false, &objects);
+  return objects;
 }
 
 }  // namespace tessera

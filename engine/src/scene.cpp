@@ -6,12 +6,14 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
 
 #include "engine/src/vertex/vertex_stage.hpp"
+#include "tessera/error.hpp"
 
 namespace tessera {
 
@@ -134,7 +136,8 @@ std::array<float, 16> to_array(const glm::mat4& m) {
 
 // The objects through the vertex stage's transform: eye-space position (varyings 0..2) and
 // normal (3..5), the vertex colour (6..9): lit per vertex when a Gouraud colour is drawn per
-// vertex beside other targets.
+// vertex beside other targets, and for textured objects, whose texture coordinates follow
+// (10..11) and whose colour is the texel times that lit colour.
 void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pipeline,
                       const Scene& scene, SceneShading shading) {
   const float aspect = static_cast<float>(target.width()) / static_cast<float>(target.height());
@@ -175,16 +178,26 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
   // bad object leaves the target as it was.
   std::vector<Mesh> computed(scene.objects.size());  // smooth normals for meshes without
   std::vector<std::vector<glm::vec4>> colours(scene.objects.size());
-  std::vector<std::array<VertexStream, 3>> streams(scene.objects.size());
+  std::vector<std::vector<VertexStream>> streams(scene.objects.size());
+  bool colour = false;  // a target receives the shader's colour
+  for (uint32_t t = 0; t < target.target_count(); ++t)
+    colour = colour || output_of(pipeline, t) == TargetOutput::kColor;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
     const Mesh* mesh = &o.mesh;
+    const bool textured = colour && o.texture != nullptr;
+    if (textured && o.mesh.texcoords.size() != o.mesh.positions.size()) {
+      throw Error(ErrorCode::kInvalidArgument,
+                  "scene object " + std::to_string(i) + " has a texture but " +
+                      std::to_string(o.mesh.texcoords.size()) + " texture coordinates for " +
+                      std::to_string(o.mesh.positions.size()) + " vertices");
+    }
     if (o.mesh.normals.size() != o.mesh.positions.size()) {
       computed[i] = o.mesh;
       compute_normals(computed[i]);
       mesh = &computed[i];
     }
-    if (lit_vertices) {
+    if (lit_vertices || textured) {
       const std::vector<float> lit = shade_vertices(o.mesh, o.model, scene.camera.eye, scene.light);
       colours[i].resize(lit.size() / 4);
       std::memcpy(&colours[i].data()->x, lit.data(), lit.size() * sizeof(float));
@@ -195,6 +208,10 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
     streams[i] = {VertexStream{{&mesh->positions.data()->x, mesh->positions.size() * 3}, 3},
                   VertexStream{{&mesh->normals.data()->x, mesh->normals.size() * 3}, 3},
                   VertexStream{{&colours[i].data()->x, colours[i].size() * 4}, 4}};
+    if (textured) {
+      streams[i].push_back(
+          VertexStream{{&o.mesh.texcoords.data()->x, o.mesh.texcoords.size() * 2}, 2});
+    }
     shader.transform.model = to_array(o.model);
     vertex::validate(shader, {streams[i], mesh->positions.size(), mesh->indices});
   }
@@ -202,9 +219,15 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
     const SceneObject& o = scene.objects[i];
     const Mesh* mesh = computed[i].positions.empty() ? &o.mesh : &computed[i];
     shader.transform.model = to_array(o.model);
-    pipeline.object_id = static_cast<uint32_t>(i + 1);
-    renderer.draw_vertices(target, pipeline, shader,
-                           {streams[i], mesh->positions.size(), mesh->indices});
+    PipelineState p = pipeline;
+    p.object_id = static_cast<uint32_t>(i + 1);
+    if (streams[i].size() == 4) {
+      p.shader = FragmentShader::kTextured;
+      p.roles.texcoord = 10;
+      p.texture = o.texture;
+      p.sampler = o.sampler;
+    }
+    renderer.draw_vertices(target, p, shader, {streams[i], mesh->positions.size(), mesh->indices});
   }
 }
 
@@ -212,8 +235,10 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
 
 void draw_scene(Renderer& renderer, Framebuffer& target, const PipelineState& pipeline,
                 const Scene& scene, SceneShading shading) {
+  const bool textured = std::any_of(scene.objects.begin(), scene.objects.end(),
+                                    [](const SceneObject& o) { return o.texture != nullptr; });
   if (shading == SceneShading::kPerPixel || pipeline.output != TargetOutput::kColor ||
-      target.target_count() > 1) {
+      target.target_count() > 1 || textured) {
     PipelineState p = pipeline;
     if (shading == SceneShading::kPerPixel) p.shader = FragmentShader::kPhong;
     draw_transformed(renderer, target, p, scene, shading);

@@ -1,9 +1,14 @@
 // The built-in demo scene: parametric surfaces (a rolling heightfield, a torus, a trefoil-knot
 // tube, spheres) that overlap in depth, lit per vertex, so one image shows perspective,
-// Gouraud colour, depth testing and antialiased silhouettes.
+// Gouraud colour, depth testing and antialiased silhouettes; the heightfield is tiled with a
+// procedural texture (trilinear, so its far tiles do not alias).
 #include <cmath>
+#include <cstdint>
 #include <functional>
+#include <memory>
 #include <numbers>
+#include <span>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -30,6 +35,7 @@ Mesh parametric(int nu, int nv, bool wrap_u, bool wrap_v,
       const float v = static_cast<float>(j) / static_cast<float>(nv);
       m.positions.push_back(position(u, v));
       m.colors.push_back(color(u, v));
+      m.texcoords.emplace_back(u, v);
     }
   }
   auto index = [&](int i, int j) { return static_cast<uint32_t>((j % rows) * cols + (i % cols)); };
@@ -49,6 +55,27 @@ glm::vec4 hue(float h) {
   const float g = 0.5f + 0.5f * std::cos(2.0f * kPi * (h - 1.0f / 3.0f));
   const float b = 0.5f + 0.5f * std::cos(2.0f * kPi * (h - 2.0f / 3.0f));
   return {r, g, b, 1.0f};
+}
+
+// Square stone tiles with darker joints and a little variation per tile, 256x256 sRGB texels
+// with their mip chain.
+std::shared_ptr<const Texture> tile_texture() {
+  constexpr uint32_t kSize = 256, kTile = 64;
+  std::vector<uint8_t> texels;
+  texels.reserve(kSize * kSize * 4);
+  for (uint32_t y = 0; y < kSize; ++y) {
+    for (uint32_t x = 0; x < kSize; ++x) {
+      const uint32_t tx = x % kTile, ty = y % kTile;
+      const bool joint = tx < 3 || ty < 3;
+      const uint32_t tile = (x / kTile) * 7 + (y / kTile) * 13;
+      const auto shade = static_cast<uint8_t>(joint ? 120 : 215 + (tile * 37) % 40);
+      const auto grain = static_cast<uint8_t>(((x * 31) ^ (y * 17)) % 12);
+      texels.insert(texels.end(), {static_cast<uint8_t>(shade - grain),
+                                   static_cast<uint8_t>(shade - grain), shade, 255});
+    }
+  }
+  return std::make_shared<Texture>(TextureDesc{kSize, kSize, TextureFormat::kRGBA8Srgb},
+                                   std::as_bytes(std::span<const uint8_t>(texels)), true);
 }
 
 Mesh sphere(int segments, glm::vec4 top, glm::vec4 bottom) {
@@ -83,6 +110,11 @@ Scene make_demo_scene() {
         return glm::mix(glm::vec4(0.05f, 0.35f, 0.40f, 1.0f), glm::vec4(0.90f, 0.80f, 0.55f, 1.0f),
                         glm::clamp(h, 0.0f, 1.0f));
       })});
+  // Twelve tiles across (one per unit), repeated.
+  SceneObject& ground = scene.objects.back();
+  for (glm::vec2& uv : ground.mesh.texcoords)
+    uv *= 12.0f;
+  ground.texture = tile_texture();
 
   // A torus standing on edge, hue running around it.
   scene.objects.push_back(

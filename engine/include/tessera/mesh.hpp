@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -14,9 +15,10 @@ namespace tessera {
 
 struct Mesh {
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;  // one per position (may be empty until computed)
-  std::vector<glm::vec4> colors;   // one per position: base colour, before lighting
-  std::vector<uint32_t> indices;   // triangle list
+  std::vector<glm::vec3> normals;    // one per position (may be empty until computed)
+  std::vector<glm::vec4> colors;     // one per position: base colour, before lighting
+  std::vector<glm::vec2> texcoords;  // one per position (u right, v down), or none
+  std::vector<uint32_t> indices;     // triangle list
 
   size_t triangle_count() const noexcept { return indices.size() / 3; }
 };

@@ -4,9 +4,11 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "tessera/export.hpp"
 #include "tessera/mesh.hpp"
+#include "tessera/scene.hpp"
 
 namespace tessera {
 
@@ -26,5 +28,13 @@ TESSERA_API Mesh load_mesh(const std::filesystem::path& path);
 // as load_mesh, except that a file without triangles is fine; one without vertices is
 // Error(kInvalidInput).
 TESSERA_API Mesh load_point_cloud(const std::filesystem::path& path);
+
+// Loads the file's triangles as load_mesh does, one scene object per material (identity model
+// matrices), each with its texture coordinates (v down from the image's top row) and, when its
+// material has a base colour texture (glTF's baseColorTexture, OBJ's map_Kd) and the mesh has
+// texture coordinates, that texture (sRGB, with its mip chain; from its file beside the model
+// or embedded in it) and the material's wrap modes. Same errors as load_mesh; a texture that
+// cannot be read is an error naming it.
+TESSERA_API std::vector<SceneObject> load_scene_objects(const std::filesystem::path& path);
 
 }  // namespace tessera

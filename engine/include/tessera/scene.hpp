@@ -4,7 +4,9 @@
 // of the lecture notes; M_vp (the viewport) is applied by the rasterizer.
 #pragma once
 
+#include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -61,8 +63,17 @@ TESSERA_API std::vector<Float4> to_clip_space(std::span<const glm::vec3> positio
                                               const glm::mat4& mvp);
 
 struct SceneObject {
+  SceneObject() = default;
+  SceneObject(Mesh m, const glm::mat4& model_matrix = glm::mat4(1.0f))
+      : mesh(std::move(m)), model(model_matrix) {}
+
   Mesh mesh;
   glm::mat4 model{1.0f};
+  // A base colour texture, sampled at mesh.texcoords (which the mesh must then have) and
+  // multiplied by the lit vertex colour: textured objects are lit per vertex whatever the
+  // SceneShading (FragmentShader::kTextured is unlit).
+  std::shared_ptr<const Texture> texture;
+  Sampler sampler;
 };
 
 struct TESSERA_API Scene {

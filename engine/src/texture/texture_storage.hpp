@@ -62,9 +62,14 @@ std::array<T, 4> decode(TextureFormat format, const std::byte* p) {
     case TextureFormat::kRGBA8:
       return {unorm(0), unorm(1), unorm(2), unorm(3)};
     case TextureFormat::kRGBA8Srgb: {
-      const auto s = [&](int c) {
-        return static_cast<T>(srgb_to_linear(std::to_integer<uint8_t>(p[c]) / 255.0));
-      };
+      // The decoded value of every byte, computed once: the same values as the formula's.
+      static const std::array<T, 256> table = [] {
+        std::array<T, 256> t;
+        for (int i = 0; i < 256; ++i)
+          t[i] = static_cast<T>(srgb_to_linear(i / 255.0));
+        return t;
+      }();
+      const auto s = [&](int c) { return table[std::to_integer<uint8_t>(p[c])]; };
       return {s(0), s(1), s(2), unorm(3)};
     }
     case TextureFormat::kRGBA32F:
