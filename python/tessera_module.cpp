@@ -28,9 +28,11 @@
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
 #include "tessera/shading.hpp"
+#include "tessera/texture.hpp"
 #include "tessera/types.hpp"
 #include "tessera/version.hpp"
 #if TESSERA_PYTHON_IO
+#include "tessera/image_io.hpp"
 #include "tessera/mesh_io.hpp"
 #endif
 
@@ -98,7 +100,26 @@ constexpr std::pair<std::string_view, VaryingMode> kVaryingModeNames[] = {
     {"affine", VaryingMode::kAffine},
     {"flat", VaryingMode::kFlat}};
 constexpr std::pair<std::string_view, FragmentShader> kShaderNames[] = {
-    {"gouraud", FragmentShader::kGouraud}, {"phong", FragmentShader::kPhong}};
+    {"gouraud", FragmentShader::kGouraud},
+    {"phong", FragmentShader::kPhong},
+    {"textured", FragmentShader::kTextured}};
+constexpr std::pair<std::string_view, tessera::Filter> kFilterNames[] = {
+    {"nearest", tessera::Filter::kNearest}, {"linear", tessera::Filter::kLinear}};
+constexpr std::pair<std::string_view, tessera::MipFilter> kMipFilterNames[] = {
+    {"none", tessera::MipFilter::kNone},
+    {"nearest", tessera::MipFilter::kNearest},
+    {"linear", tessera::MipFilter::kLinear}};
+constexpr std::pair<std::string_view, tessera::Wrap> kWrapNames[] = {
+    {"repeat", tessera::Wrap::kRepeat},
+    {"clamp_to_edge", tessera::Wrap::kClampToEdge},
+    {"mirrored_repeat", tessera::Wrap::kMirroredRepeat},
+    {"clamp_to_border", tessera::Wrap::kClampToBorder}};
+constexpr std::pair<std::string_view, tessera::TextureFormat> kTextureFormatNames[] = {
+    {"rgba8", tessera::TextureFormat::kRGBA8},
+    {"rgba8_srgb", tessera::TextureFormat::kRGBA8Srgb},
+    {"rgba32f", tessera::TextureFormat::kRGBA32F},
+    {"r8", tessera::TextureFormat::kR8},
+    {"r32f", tessera::TextureFormat::kR32F}};
 constexpr std::pair<std::string_view, TargetOutput> kOutputNames[] = {
     {"color", TargetOutput::kColor},
     {"eye_depth", TargetOutput::kEyeDepth},
@@ -309,7 +330,68 @@ PYBIND11_MODULE(tessera, m) {
   roles.def(py::init(&from_kwargs<VaryingRoles>))
       .def_readwrite("color", &VaryingRoles::color)
       .def_readwrite("normal", &VaryingRoles::normal)
-      .def_readwrite("position", &VaryingRoles::position);
+      .def_readwrite("position", &VaryingRoles::position)
+      .def_readwrite("texcoord", &VaryingRoles::texcoord);
+
+  py::class_<tessera::Texture, std::shared_ptr<tessera::Texture>>(
+      m, "Texture",
+      "A 2D texture and its mip chain (tessera/texture.hpp): texel (0, 0) is the top-left one, "
+      "u runs right and v down.")
+      .def(py::init([](const py::array& pixels, bool srgb, bool mipmaps) {
+             // uint8 (h, w, 4) or (h, w); float32 (h, w, 4) or (h, w).
+             const bool bytes = py::isinstance<py::array_t<uint8_t>>(pixels);
+             if (!bytes && !py::isinstance<py::array_t<float>>(pixels)) {
+               throw py::type_error("pixels must be a uint8 or float32 array, got dtype " +
+                                    py::str(pixels.dtype()).cast<std::string>());
+             }
+             if ((pixels.ndim() != 2 && pixels.ndim() != 3) ||
+                 (pixels.ndim() == 3 && pixels.shape(2) != 4)) {
+               throw py::value_error("pixels must have shape (h, w, 4) or (h, w)");
+             }
+             if (!(pixels.flags() & py::array::c_style)) {
+               throw py::value_error("pixels must be C-contiguous (numpy.ascontiguousarray)");
+             }
+             const bool red = pixels.ndim() == 2;
+             using F = tessera::TextureFormat;
+             const F format = bytes ? (red    ? F::kR8
+                                       : srgb ? F::kRGBA8Srgb
+                                              : F::kRGBA8)
+                                    : (red ? F::kR32F : F::kRGBA32F);
+             // Sides past 2^32 - 1 are out of range anyway: the texture names the clamped size.
+             const auto side = [](py::ssize_t n) {
+               return static_cast<uint32_t>(std::min<py::ssize_t>(n, UINT32_MAX));
+             };
+             const tessera::TextureDesc desc{side(pixels.shape(1)), side(pixels.shape(0)), format};
+             const std::span<const std::byte> data(static_cast<const std::byte*>(pixels.data()),
+                                                   static_cast<size_t>(pixels.nbytes()));
+             return std::make_shared<tessera::Texture>(desc, data, mipmaps);
+           }),
+           py::arg("pixels"), py::arg("srgb") = false, py::arg("mipmaps") = true,
+           "The caller's texels copied: uint8 (h, w, 4) as rgba8 (rgba8_srgb with srgb) or "
+           "(h, w) as r8, float32 as rgba32f or r32f; the mip chain generated with mipmaps.")
+      .def_property_readonly("width", [](const tessera::Texture& t) { return t.desc().width; })
+      .def_property_readonly("height", [](const tessera::Texture& t) { return t.desc().height; })
+      .def_property_readonly("levels", &tessera::Texture::levels)
+      .def_property_readonly("format", [](const tessera::Texture& t) {
+        return name_of<tessera::TextureFormat>(kTextureFormatNames, t.desc().format);
+      });
+
+  py::class_<tessera::Sampler> sampler(
+      m, "Sampler",
+      "How a texture is sampled: filters (\"nearest\", \"linear\"), mip_filter (\"none\", "
+      "\"nearest\", \"linear\"), wraps (\"repeat\", \"clamp_to_edge\", \"mirrored_repeat\", "
+      "\"clamp_to_border\"), border_color, lod_bias, min_lod, max_lod.");
+  sampler.def(py::init(&from_kwargs<tessera::Sampler>))
+      .def_readwrite("border_color", &tessera::Sampler::border_color)
+      .def_readwrite("lod_bias", &tessera::Sampler::lod_bias)
+      .def_readwrite("min_lod", &tessera::Sampler::min_lod)
+      .def_readwrite("max_lod", &tessera::Sampler::max_lod);
+  def_enum<tessera::Filter>(sampler, "mag_filter", &tessera::Sampler::mag_filter, kFilterNames);
+  def_enum<tessera::Filter>(sampler, "min_filter", &tessera::Sampler::min_filter, kFilterNames);
+  def_enum<tessera::MipFilter>(sampler, "mip_filter", &tessera::Sampler::mip_filter,
+                               kMipFilterNames);
+  def_enum<tessera::Wrap>(sampler, "wrap_u", &tessera::Sampler::wrap_u, kWrapNames);
+  def_enum<tessera::Wrap>(sampler, "wrap_v", &tessera::Sampler::wrap_v, kWrapNames);
 
   py::class_<Light> light(m, "Light", "A light of the Phong model (tessera/shading.hpp).");
   light.def(py::init(&from_kwargs<Light>))
@@ -392,6 +474,16 @@ PYBIND11_MODULE(tessera, m) {
                           kInterpolationNames);
   def_enum<FragmentShader>(pipeline, "shader", &PipelineState::shader, kShaderNames);
   def_enum<TargetOutput>(pipeline, "output", &PipelineState::output, kOutputNames);
+  pipeline.def_readwrite("sampler", &PipelineState::sampler)
+      .def_property(
+          "texture",
+          [](const PipelineState& self) {
+            return std::const_pointer_cast<tessera::Texture>(self.texture);
+          },
+          [](PipelineState& self, std::shared_ptr<tessera::Texture> texture) {
+            self.texture = std::move(texture);
+          },
+          "shader \"textured\": the Texture (or None) sampled at roles.texcoord.");
   pipeline.def_property(
       "extra_outputs",
       [](const PipelineState& self) {
@@ -636,6 +728,14 @@ PYBIND11_MODULE(tessera, m) {
       },
       py::arg("path"),
       "Loads every triangle of a Wavefront OBJ, glTF 2.0 or PLY file into one Mesh (Assimp).");
+  m.def(
+      "load_texture",
+      [](const std::filesystem::path& path, bool srgb, bool mipmaps) {
+        py::gil_scoped_release release;
+        return std::make_shared<tessera::Texture>(tessera::load_texture(path, srgb, mipmaps));
+      },
+      py::arg("path"), py::arg("srgb") = false, py::arg("mipmaps") = true,
+      "A Texture from an image file (OpenImageIO: PNG, JPEG, EXR, TIFF, ...).");
 #endif
 
   py::class_<Renderer>(m, "Renderer",
