@@ -339,7 +339,7 @@ TEST(CApi, ShadingStateCrossesFieldByField) {
   tessera_pipeline_state c;
   ASSERT_EQ(tessera_pipeline_state_init(&c), TESSERA_OK);
   tessera::PipelineState p;
-  c.roles = {3, 0, 7};
+  c.roles = {3, 0, 7, 10};
   p.roles = {3, 0, 7};
   c.varying_modes[1] = TESSERA_VARYING_FLAT;
   p.varying_modes[1] = tessera::VaryingMode::kFlat;

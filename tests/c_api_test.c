@@ -474,6 +474,63 @@ static void check_targets(tessera_backend backend) {
   tessera_renderer_destroy(renderer);
 }
 
+/* ---- Textures -------------------------------------------------------------------------------- */
+
+/* A kSize x kSize texture mapped one texel per pixel onto the whole window draws its texels,
+ * with the nearest and the linear filter, on both backends; bad textures are errors. */
+static void check_textures(tessera_backend backend) {
+  static uint8_t texels[kSize * kSize * 4], rgba[kSize * kSize * 4];
+  for (size_t i = 0; i < sizeof texels; ++i)
+    texels[i] = (uint8_t)((i * 37 + i / 7) % 256);
+  tessera_texture* texture = NULL;
+  OK(tessera_texture_create(kSize, kSize, TESSERA_TEXTURE_RGBA8, texels, sizeof texels, true, NULL,
+                            &texture));
+  texels[0] ^= 0xFF; /* the texture holds a copy */
+  tessera_renderer* renderer = make_renderer(backend, 2);
+  tessera_framebuffer* fb = make_framebuffer(4, TESSERA_COLOR_RGBA8, TESSERA_DEPTH_FLOAT32);
+  const float quad[] = {-1, 1, 0.5f, 1, 1, 1, 0.5f, 1, 1, -1, 0.5f, 1, -1, -1, 0.5f, 1};
+  const float uv[] = {0, 0, 1, 0, 1, 1, 0, 1};
+  const uint32_t indices[] = {0, 1, 2, 0, 2, 3};
+  const tessera_draw_input input = {quad, 4, uv, 2, indices, 6};
+  tessera_pipeline_state pipeline;
+  OK(tessera_pipeline_state_init(&pipeline));
+  CHECK(pipeline.sampler.mag_filter == TESSERA_FILTER_LINEAR &&
+        pipeline.sampler.mip_filter == TESSERA_MIP_FILTER_LINEAR &&
+        pipeline.sampler.wrap_u == TESSERA_WRAP_REPEAT && pipeline.texture == NULL &&
+        pipeline.roles.texcoord == 10);
+  pipeline.shader = TESSERA_SHADER_TEXTURED;
+  pipeline.roles.texcoord = 0;
+  EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input),
+               TESSERA_ERROR_INVALID_ARGUMENT, "tessera_draw_triangles", "needs a texture");
+  pipeline.texture = texture;
+  for (int filter = 0; filter < 2; ++filter) {
+    pipeline.sampler.mag_filter = pipeline.sampler.min_filter = (tessera_filter)filter;
+    pipeline.depth_compare = TESSERA_COMPARE_ALWAYS;
+    OK(tessera_draw_triangles(renderer, fb, &pipeline, &input));
+    OK(tessera_framebuffer_read_rgba8(fb, rgba, sizeof rgba));
+    texels[0] ^= 0xFF;
+    CHECK(memcmp(rgba, texels, sizeof rgba) == 0);
+    texels[0] ^= 0xFF;
+  }
+  pipeline.sampler.wrap_v = (tessera_wrap)9;
+  EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input),
+               TESSERA_ERROR_INVALID_ARGUMENT, "tessera_draw_triangles", "sampler.wrap_v");
+  tessera_texture* bad = texture;
+  EXPECT_ERROR(
+      tessera_texture_create(kSize, kSize, TESSERA_TEXTURE_RGBA8, texels, 10, false, NULL, &bad),
+      TESSERA_ERROR_INVALID_ARGUMENT, "tessera_texture_create", "got 10");
+  CHECK(bad == NULL);
+  EXPECT_ERROR(tessera_texture_create(0, 4, TESSERA_TEXTURE_R8, texels, 0, false, NULL, &bad),
+               TESSERA_ERROR_INVALID_ARGUMENT, "tessera_texture_create", "size 0x4");
+  EXPECT_ERROR(
+      tessera_texture_create(4, 4, (tessera_texture_format)7, texels, 64, false, NULL, &bad),
+      TESSERA_ERROR_INVALID_ARGUMENT, "tessera_texture_create", "format");
+  tessera_texture_destroy(texture);
+  tessera_texture_destroy(NULL);
+  tessera_framebuffer_destroy(fb);
+  tessera_renderer_destroy(renderer);
+}
+
 /* ---- Allocator callbacks ----------------------------------------------------------------- */
 
 typedef struct counting_allocator {
@@ -705,9 +762,9 @@ static void check_errors(void) {
   EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input), bad_arg,
                "tessera_draw_triangles", "pipeline cull has the invalid value 2147483646");
   OK(tessera_pipeline_state_init(&pipeline));
-  pipeline.shader = (tessera_fragment_shader)3;
+  pipeline.shader = (tessera_fragment_shader)4;
   EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input), bad_arg,
-               "tessera_draw_triangles", "pipeline shader has the invalid value 3");
+               "tessera_draw_triangles", "pipeline shader has the invalid value 4");
   pipeline.shader = (tessera_fragment_shader)259; /* would wrap to 3 in the C++ uint8_t */
   EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input), bad_arg,
                "tessera_draw_triangles", "pipeline shader has the invalid value 259");
@@ -799,6 +856,8 @@ int main(void) {
   check_user_shader(TESSERA_BACKEND_REFERENCE);
   check_targets(TESSERA_BACKEND_FAST);
   check_targets(TESSERA_BACKEND_REFERENCE);
+  check_textures(TESSERA_BACKEND_FAST);
+  check_textures(TESSERA_BACKEND_REFERENCE);
   check_allocator();
   check_errors();
   printf("c_api_test: %d checks, %d failed\n", checks, failures);

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <new>
 #include <span>
 #include <string>
@@ -24,6 +25,7 @@
 #include "tessera/pipeline.hpp"
 #include "tessera/primitives.hpp"
 #include "tessera/renderer.hpp"
+#include "tessera/texture.hpp"
 #include "tessera/types.hpp"
 
 // The handles: the C++ object and the allocator it was created with (alloc == nullptr: plain
@@ -32,6 +34,14 @@ struct tessera_framebuffer {
   tessera_framebuffer(const tessera::FramebufferDesc& desc, const tessera_allocator& a)
       : framebuffer(desc), allocator(a) {}
   tessera::Framebuffer framebuffer;
+  tessera_allocator allocator;
+};
+
+struct tessera_texture {
+  tessera_texture(const tessera::TextureDesc& desc, std::span<const std::byte> texels, bool mipmaps,
+                  const tessera_allocator& a)
+      : texture(std::make_shared<const tessera::Texture>(desc, texels, mipmaps)), allocator(a) {}
+  std::shared_ptr<const tessera::Texture> texture;  // shared with the draws' pipelines
   tessera_allocator allocator;
 };
 
@@ -89,7 +99,22 @@ static_assert(same(TESSERA_VARYING_DEFAULT, tessera::VaryingMode::kDefault) &&
               same(TESSERA_VARYING_FLAT, tessera::VaryingMode::kFlat));
 static_assert(same(TESSERA_SHADER_GOURAUD, tessera::FragmentShader::kGouraud) &&
               same(TESSERA_SHADER_PHONG, tessera::FragmentShader::kPhong) &&
-              same(TESSERA_SHADER_USER, tessera::FragmentShader::kUser));
+              same(TESSERA_SHADER_USER, tessera::FragmentShader::kUser) &&
+              same(TESSERA_SHADER_TEXTURED, tessera::FragmentShader::kTextured));
+static_assert(same(TESSERA_TEXTURE_RGBA8, tessera::TextureFormat::kRGBA8) &&
+              same(TESSERA_TEXTURE_RGBA8_SRGB, tessera::TextureFormat::kRGBA8Srgb) &&
+              same(TESSERA_TEXTURE_RGBA32F, tessera::TextureFormat::kRGBA32F) &&
+              same(TESSERA_TEXTURE_R8, tessera::TextureFormat::kR8) &&
+              same(TESSERA_TEXTURE_R32F, tessera::TextureFormat::kR32F));
+static_assert(same(TESSERA_FILTER_NEAREST, tessera::Filter::kNearest) &&
+              same(TESSERA_FILTER_LINEAR, tessera::Filter::kLinear));
+static_assert(same(TESSERA_MIP_FILTER_NONE, tessera::MipFilter::kNone) &&
+              same(TESSERA_MIP_FILTER_NEAREST, tessera::MipFilter::kNearest) &&
+              same(TESSERA_MIP_FILTER_LINEAR, tessera::MipFilter::kLinear));
+static_assert(same(TESSERA_WRAP_REPEAT, tessera::Wrap::kRepeat) &&
+              same(TESSERA_WRAP_CLAMP_TO_EDGE, tessera::Wrap::kClampToEdge) &&
+              same(TESSERA_WRAP_MIRRORED_REPEAT, tessera::Wrap::kMirroredRepeat) &&
+              same(TESSERA_WRAP_CLAMP_TO_BORDER, tessera::Wrap::kClampToBorder));
 static_assert(TESSERA_FRAGMENT_BATCH_STRIDE == tessera::kFragmentBatchStride);
 static_assert(same(TESSERA_OUTPUT_COLOR, tessera::TargetOutput::kColor) &&
               same(TESSERA_OUTPUT_EYE_DEPTH, tessera::TargetOutput::kEyeDepth) &&
@@ -232,17 +257,26 @@ tessera::PipelineState to_cpp(const tessera_pipeline_state& c) {
         c.varying_modes[i], [i] { return "pipeline varying_modes[" + std::to_string(i) + "]"; });
   }
   p.shader = to_cpp_enum<tessera::FragmentShader>(c.shader, "pipeline shader");
-  // Textures are not in the C API yet: its shaders end at TESSERA_SHADER_USER.
-  if (static_cast<uint32_t>(c.shader) > TESSERA_SHADER_USER) {
-    invalid("pipeline shader has the invalid value " +
-            std::to_string(static_cast<uint32_t>(c.shader)));
-  }
   p.output = to_cpp_enum<tessera::TargetOutput>(c.output, "pipeline output");
   for (uint32_t t = 0; t + 1 < tessera::kMaxColorTargets; ++t) {
     p.extra_outputs[t] = to_cpp_enum<tessera::TargetOutput>(
         c.extra_outputs[t], [t] { return "pipeline extra_outputs[" + std::to_string(t) + "]"; });
   }
-  p.roles = {c.roles.color, c.roles.normal, c.roles.position};
+  p.roles = {c.roles.color, c.roles.normal, c.roles.position, c.roles.texcoord};
+  if (c.texture != nullptr) p.texture = c.texture->texture;
+  tessera::Sampler& sampler = p.sampler;
+  sampler.mag_filter =
+      to_cpp_enum<tessera::Filter>(c.sampler.mag_filter, "pipeline sampler.mag_filter");
+  sampler.min_filter =
+      to_cpp_enum<tessera::Filter>(c.sampler.min_filter, "pipeline sampler.min_filter");
+  sampler.mip_filter =
+      to_cpp_enum<tessera::MipFilter>(c.sampler.mip_filter, "pipeline sampler.mip_filter");
+  sampler.wrap_u = to_cpp_enum<tessera::Wrap>(c.sampler.wrap_u, "pipeline sampler.wrap_u");
+  sampler.wrap_v = to_cpp_enum<tessera::Wrap>(c.sampler.wrap_v, "pipeline sampler.wrap_v");
+  std::copy(c.sampler.border_color, c.sampler.border_color + 4, sampler.border_color.begin());
+  sampler.lod_bias = c.sampler.lod_bias;
+  sampler.min_lod = c.sampler.min_lod;
+  sampler.max_lod = c.sampler.max_lod;
   tessera::PhongState& phong = p.phong;
   std::copy(c.phong.base_color, c.phong.base_color + 4, phong.base_color.begin());
   phong.ka = c.phong.ka;
@@ -304,7 +338,17 @@ tessera_pipeline_state to_c(const tessera::PipelineState& p) {
   c.output = to_c_enum<tessera_target_output>(p.output);
   for (uint32_t t = 0; t + 1 < tessera::kMaxColorTargets; ++t)
     c.extra_outputs[t] = to_c_enum<tessera_target_output>(p.extra_outputs[t]);
-  c.roles = {p.roles.color, p.roles.normal, p.roles.position};
+  c.roles = {p.roles.color, p.roles.normal, p.roles.position, p.roles.texcoord};
+  c.texture = nullptr;  // a C++ pipeline's texture has no C handle
+  c.sampler.mag_filter = to_c_enum<tessera_filter>(p.sampler.mag_filter);
+  c.sampler.min_filter = to_c_enum<tessera_filter>(p.sampler.min_filter);
+  c.sampler.mip_filter = to_c_enum<tessera_mip_filter>(p.sampler.mip_filter);
+  c.sampler.wrap_u = to_c_enum<tessera_wrap>(p.sampler.wrap_u);
+  c.sampler.wrap_v = to_c_enum<tessera_wrap>(p.sampler.wrap_v);
+  std::copy(p.sampler.border_color.begin(), p.sampler.border_color.end(), c.sampler.border_color);
+  c.sampler.lod_bias = p.sampler.lod_bias;
+  c.sampler.min_lod = p.sampler.min_lod;
+  c.sampler.max_lod = p.sampler.max_lod;
   const tessera::PhongState& phong = p.phong;
   std::copy(phong.base_color.begin(), phong.base_color.end(), c.phong.base_color);
   c.phong.ka = phong.ka;
@@ -503,6 +547,28 @@ tessera_result tessera_framebuffer_create(const tessera_framebuffer_desc* desc,
 
 void tessera_framebuffer_destroy(tessera_framebuffer* framebuffer) {
   destroy_handle(framebuffer);
+}
+
+// ---- Textures -------------------------------------------------------------------------------
+
+tessera_result tessera_texture_create(uint32_t width, uint32_t height,
+                                      tessera_texture_format format, const void* texels,
+                                      size_t size, bool mipmaps, const tessera_allocator* allocator,
+                                      tessera_texture** out) {
+  if (out != nullptr) *out = nullptr;
+  return guarded(__func__, [&] {
+    tessera_texture*& result = deref(out, "out");
+    if (texels == nullptr && size != 0)
+      invalid("texels is NULL, but size is " + std::to_string(size));
+    const tessera::TextureDesc desc{width, height,
+                                    to_cpp_enum<tessera::TextureFormat>(format, "texture format")};
+    const std::span<const std::byte> bytes(static_cast<const std::byte*>(texels), size);
+    result = create_handle<tessera_texture>(allocator, desc, bytes, mipmaps);
+  });
+}
+
+void tessera_texture_destroy(tessera_texture* texture) {
+  destroy_handle(texture);
 }
 
 tessera_result tessera_framebuffer_get_desc(const tessera_framebuffer* framebuffer,

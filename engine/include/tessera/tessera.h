@@ -256,9 +256,10 @@ typedef enum tessera_varying_mode {
 
 /* The built-in fragment shader (tessera::FragmentShader). */
 typedef enum tessera_fragment_shader {
-  TESSERA_SHADER_GOURAUD = 0, /* the colour varyings, RGBA */
-  TESSERA_SHADER_PHONG = 1,   /* per-pixel Phong lighting (tessera_phong_state) */
-  TESSERA_SHADER_USER = 2,    /* tessera_pipeline_state.fragment_function */
+  TESSERA_SHADER_GOURAUD = 0,  /* the colour varyings, RGBA */
+  TESSERA_SHADER_PHONG = 1,    /* per-pixel Phong lighting (tessera_phong_state) */
+  TESSERA_SHADER_USER = 2,     /* tessera_pipeline_state.fragment_function */
+  TESSERA_SHADER_TEXTURED = 3, /* tessera_pipeline_state.texture times the colour varyings */
   TESSERA_FRAGMENT_SHADER_MAX_ENUM = 0x7FFFFFFF
 } tessera_fragment_shader;
 
@@ -322,7 +323,66 @@ typedef struct tessera_varying_roles {
   uint32_t color;    /* 4 varyings, RGBA */
   uint32_t normal;   /* 3 varyings */
   uint32_t position; /* 3 varyings */
+  uint32_t texcoord; /* 2 varyings, (u, v): TESSERA_SHADER_TEXTURED */
 } tessera_varying_roles;
+
+/* ---- Textures (tessera::Texture, tessera::Sampler; docs/TEXTURES.md) -------------------- */
+
+typedef enum tessera_texture_format {
+  TESSERA_TEXTURE_RGBA8 = 0,
+  TESSERA_TEXTURE_RGBA8_SRGB = 1, /* RGB sRGB-encoded, decoded when sampled */
+  TESSERA_TEXTURE_RGBA32F = 2,
+  TESSERA_TEXTURE_R8 = 3,
+  TESSERA_TEXTURE_R32F = 4,
+  TESSERA_TEXTURE_FORMAT_MAX_ENUM = 0x7FFFFFFF
+} tessera_texture_format;
+
+typedef enum tessera_filter {
+  TESSERA_FILTER_NEAREST = 0,
+  TESSERA_FILTER_LINEAR = 1,
+  TESSERA_FILTER_MAX_ENUM = 0x7FFFFFFF
+} tessera_filter;
+
+typedef enum tessera_mip_filter {
+  TESSERA_MIP_FILTER_NONE = 0,
+  TESSERA_MIP_FILTER_NEAREST = 1,
+  TESSERA_MIP_FILTER_LINEAR = 2,
+  TESSERA_MIP_FILTER_MAX_ENUM = 0x7FFFFFFF
+} tessera_mip_filter;
+
+typedef enum tessera_wrap {
+  TESSERA_WRAP_REPEAT = 0,
+  TESSERA_WRAP_CLAMP_TO_EDGE = 1,
+  TESSERA_WRAP_MIRRORED_REPEAT = 2,
+  TESSERA_WRAP_CLAMP_TO_BORDER = 3,
+  TESSERA_WRAP_MAX_ENUM = 0x7FFFFFFF
+} tessera_wrap;
+
+/* How a texture is sampled (tessera::Sampler); tessera_pipeline_state_init fills the C++
+ * defaults (linear filters, linear mips, repeat). */
+typedef struct tessera_sampler {
+  tessera_filter mag_filter;
+  tessera_filter min_filter;
+  tessera_mip_filter mip_filter;
+  tessera_wrap wrap_u;
+  tessera_wrap wrap_v;
+  float border_color[4]; /* TESSERA_WRAP_CLAMP_TO_BORDER */
+  float lod_bias;
+  float min_lod, max_lod;
+} tessera_sampler;
+
+/* A texture (tessera::Texture): the caller's texels copied (width * height texels, top row
+ * first, 4 bytes per texel for RGBA8, 16 for RGBA32F, 1 for R8, 4 for R32F; `size` is their
+ * byte count and must match), and the mip chain generated with `mipmaps`. Draws only read it;
+ * it must outlive the draws that use it. On failure *out is NULL. */
+typedef struct tessera_texture tessera_texture;
+TESSERA_API tessera_result tessera_texture_create(uint32_t width, uint32_t height,
+                                                  tessera_texture_format format, const void* texels,
+                                                  size_t size, bool mipmaps,
+                                                  const tessera_allocator* allocator,
+                                                  tessera_texture** out);
+/* Destroys a texture; NULL is ignored. Cannot fail. */
+TESSERA_API void tessera_texture_destroy(tessera_texture* texture);
 
 /* A Phong light (tessera::Light; its comments give the model). */
 typedef struct tessera_light {
@@ -374,6 +434,9 @@ typedef struct tessera_pipeline_state {
   void* fragment_user_data;
   /* What extra target t + 1 receives (tessera_framebuffer_desc.extra_targets). */
   tessera_target_output extra_outputs[TESSERA_MAX_COLOR_TARGETS - 1];
+  /* TESSERA_SHADER_TEXTURED: the texture (read during the draw only) and its sampler. */
+  const tessera_texture* texture;
+  tessera_sampler sampler;
 } tessera_pipeline_state;
 
 TESSERA_API tessera_result tessera_pipeline_state_init(tessera_pipeline_state* state);
