@@ -15,6 +15,7 @@
 #include <tbb/task_arena.h>
 
 #include "engine/src/finite_scan.hpp"
+#include "engine/src/shading_state.hpp"
 #include "tessera/error.hpp"
 
 namespace tessera {
@@ -300,7 +301,7 @@ void validate_shading(const Framebuffer& target, const PipelineState& pipeline,
   // Each colour target's output (target 0's `output`, the extra targets' extra_outputs).
   const FramebufferDesc& desc = target.desc();
   for (uint32_t t = 0; t <= desc.extra_targets; ++t) {
-    const TargetOutput output = t == 0 ? pipeline.output : pipeline.extra_outputs[t - 1];
+    const TargetOutput output = output_of(pipeline, t);
     const ColorFormat format = t == 0 ? desc.color_format : desc.extra_formats[t - 1];
     const std::string name =
         t == 0 ? std::string("output") : "extra_outputs[" + std::to_string(t - 1) + "]";

@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "engine/src/shading_state.hpp"
 #include "engine/src/vertex/vertex_stage.hpp"
 #include "tessera/error.hpp"
 
@@ -120,11 +121,6 @@ Bounds Scene::bounds() const {
 
 namespace {
 
-// What colour target t receives.
-TargetOutput output_of(const PipelineState& pipeline, uint32_t t) {
-  return t == 0 ? pipeline.output : pipeline.extra_outputs[t - 1];
-}
-
 std::array<float, 16> to_array(const glm::mat4& m) {
   std::array<float, 16> a;
   for (int c = 0; c < 4; ++c) {
@@ -178,6 +174,8 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
   // bad object leaves the target as it was.
   std::vector<Mesh> computed(scene.objects.size());  // smooth normals for meshes without
   std::vector<std::vector<glm::vec4>> colours(scene.objects.size());
+  // Position, normal and colour, and for a textured object its texture coordinates.
+  constexpr size_t kTexturedStreams = 4;
   std::vector<std::vector<VertexStream>> streams(scene.objects.size());
   bool colour = false;  // a target receives the shader's colour
   for (uint32_t t = 0; t < target.target_count(); ++t)
@@ -221,7 +219,7 @@ void draw_transformed(Renderer& renderer, Framebuffer& target, PipelineState pip
     shader.transform.model = to_array(o.model);
     PipelineState p = pipeline;
     p.object_id = static_cast<uint32_t>(i + 1);
-    if (streams[i].size() == 4) {
+    if (streams[i].size() == kTexturedStreams) {
       p.shader = FragmentShader::kTextured;
       p.roles.texcoord = 10;
       p.texture = o.texture;

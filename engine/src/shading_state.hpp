@@ -19,4 +19,9 @@ inline VaryingMode resolved_mode(const PipelineState& pipeline, uint32_t i) {
   return m != VaryingMode::kDefault ? m : default_mode(pipeline.interpolation);
 }
 
+// What colour target t receives: `output` for target 0, extra_outputs[t - 1] for the others.
+inline TargetOutput output_of(const PipelineState& pipeline, uint32_t t) {
+  return t == 0 ? pipeline.output : pipeline.extra_outputs[t - 1];
+}
+
 }  // namespace tessera

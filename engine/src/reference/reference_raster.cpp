@@ -75,11 +75,6 @@ bool inside_edge(int64_t e, bool top_left) {
   return e > 0 || (e == 0 && top_left);
 }
 
-// What colour target t receives.
-TargetOutput output_of(const PipelineState& pipeline, uint32_t t) {
-  return t == 0 ? pipeline.output : pipeline.extra_outputs[t - 1];
-}
-
 // What a draw's fragments are made of: every value a clipped vertex carries (the varyings,
 // then with a TargetOutput::kBarycentrics target the three barycentric carriers), each one's
 // interpolation resolved, and the first vertex's values for the flat ones.

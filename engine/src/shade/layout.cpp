@@ -142,7 +142,7 @@ Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count,
   bool function = false, sampled = false;
   for (uint32_t t = 0; t < targets->count; ++t) {
     TargetShading& target = targets->target[t];
-    target.output = t == 0 ? pipeline.output : pipeline.extra_outputs[t - 1];
+    target.output = output_of(pipeline, t);
     target.format = t == 0 ? desc.color_format : desc.extra_formats[t - 1];
     target.from_function = user && target.output == TargetOutput::kColor;
     target.textured = textured && target.output == TargetOutput::kColor;
