@@ -18,6 +18,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <span>
@@ -28,6 +29,7 @@
 
 #include "benchmarks/frame_times.hpp"
 #include "benchmarks/phong_workload.hpp"
+#include "benchmarks/texture_workload.hpp"
 #include "tessera/io.hpp"
 #include "tessera/tessera.hpp"
 
@@ -241,6 +243,28 @@ void main() {
 }
 )";
 
+// The textured workload (benchmarks/texture_workload.hpp): the texture times the colour.
+constexpr const char* kTexturedVertexShader = R"(#version 120
+attribute vec4 clip;
+attribute vec2 texcoord;
+attribute vec4 colour;
+varying vec2 v_texcoord;
+varying vec4 v_colour;
+void main() {
+  gl_Position = clip;
+  v_texcoord = texcoord;
+  v_colour = colour;
+}
+)";
+constexpr const char* kTexturedFragmentShader = R"(#version 120
+uniform sampler2D tex;
+varying vec2 v_texcoord;
+varying vec4 v_colour;
+void main() {
+  gl_FragColor = texture2D(tex, v_texcoord) * v_colour;
+}
+)";
+
 void check_gl(const char* what) {
   const GLenum e = glGetError();
   if (e != GL_NO_ERROR)
@@ -261,14 +285,15 @@ GLuint compile_shader(GLenum type, const char* source) {
   return shader;
 }
 
-// The Phong program with the Phong varyings' attributes bound to 0..4, in use.
-GLuint use_phong_program() {
+// A program of the two shaders with `attributes` bound to 0, 1, ..., in use.
+GLuint use_program(const char* vertex, const char* fragment,
+                   std::initializer_list<const char*> attributes) {
   const GLuint program = glCreateProgram();
-  glAttachShader(program, compile_shader(GL_VERTEX_SHADER, kPhongVertexShader));
-  glAttachShader(program, compile_shader(GL_FRAGMENT_SHADER, kPhongFragmentShader));
-  const char* attributes[] = {"clip", "normal", "position", "colour"};
-  for (GLuint i = 0; i < 4; ++i)
-    glBindAttribLocation(program, i, attributes[i]);
+  glAttachShader(program, compile_shader(GL_VERTEX_SHADER, vertex));
+  glAttachShader(program, compile_shader(GL_FRAGMENT_SHADER, fragment));
+  GLuint location = 0;
+  for (const char* a : attributes)
+    glBindAttribLocation(program, location++, a);
   glLinkProgram(program);
   GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
@@ -278,7 +303,39 @@ GLuint use_phong_program() {
     fail(tessera::ErrorCode::kInvalidArgument, std::string("GLSL link error: ") + log);
   }
   glUseProgram(program);
+  return program;
+}
+
+// The Phong program with the Phong varyings' attributes bound to 0..3, in use.
+GLuint use_phong_program() {
+  const GLuint program = use_program(kPhongVertexShader, kPhongFragmentShader,
+                                     {"clip", "normal", "position", "colour"});
   glUniform3fv(glGetUniformLocation(program, "lights"), 3, &tessera::bench::kPhongLights[0][0]);
+  return program;
+}
+
+// The textured program, and the benchmark texture bound to unit 0 with every level of
+// Tessera's own mip chain (the same texels), filtered as `trilinear` says, repeat wrapping.
+GLuint use_textured_program(const tessera::Texture& texture, bool trilinear, GLuint& name) {
+  const GLuint program =
+      use_program(kTexturedVertexShader, kTexturedFragmentShader, {"clip", "texcoord", "colour"});
+  glUniform1i(glGetUniformLocation(program, "tex"), 0);
+  glActiveTexture(GL_TEXTURE0);
+  glGenTextures(1, &name);
+  glBindTexture(GL_TEXTURE_2D, name);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (uint32_t level = 0; level < texture.levels(); ++level) {
+    glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(level), GL_RGBA8,
+                 static_cast<GLsizei>(texture.width(level)),
+                 static_cast<GLsizei>(texture.height(level)), 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 texture.level_bytes(level).data());
+  }
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, static_cast<GLint>(texture.levels() - 1));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                  trilinear ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
   return program;
 }
 
@@ -333,8 +390,20 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
 
   // Upload once: the timed frames draw from a buffer object, as an application would.
   const bool phong = o.shading == "phong";
+  const bool textured = o.shading == "bilinear" || o.shading == "trilinear";
   std::vector<float> vertices;
-  if (phong) {
+  if (textured) {
+    // x y z w, then u v r g b a.
+    constexpr size_t kV = tessera::bench::kTexturedVaryings;
+    const std::vector<float> varyings = tessera::bench::textured_varyings(capture);
+    vertices.reserve(vertex_count * (4 + kV));
+    for (size_t i = 0; i < vertex_count; ++i) {
+      const tessera::Float4& p = capture.positions[i];
+      vertices.insert(vertices.end(), {p.x, p.y, p.z, p.w});
+      vertices.insert(vertices.end(), varyings.begin() + static_cast<std::ptrdiff_t>(kV * i),
+                      varyings.begin() + static_cast<std::ptrdiff_t>(kV * i + kV));
+    }
+  } else if (phong) {
     // x y z w, then the ten Phong varyings.
     const std::vector<float> varyings = tessera::bench::phong_varyings(capture);
     vertices.reserve(vertex_count * 14);
@@ -353,7 +422,19 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
                vertices.data(), GL_STATIC_DRAW);
   GLuint program = 0;
-  if (phong) {
+  GLuint texture_name = 0;
+  if (textured) {
+    program = use_textured_program(*tessera::bench::benchmark_texture(), o.shading == "trilinear",
+                                   texture_name);
+    constexpr GLsizei kStride = 10 * sizeof(float);
+    const GLint sizes[] = {4, 2, 4};
+    const size_t offsets[] = {0, 4, 6};
+    for (GLuint i = 0; i < 3; ++i) {
+      glEnableVertexAttribArray(i);
+      glVertexAttribPointer(i, sizes[i], GL_FLOAT, GL_FALSE, kStride,
+                            reinterpret_cast<const void*>(offsets[i] * sizeof(float)));
+    }
+  } else if (phong) {
     program = use_phong_program();
     constexpr GLsizei kStride = 14 * sizeof(float);
     const GLint sizes[] = {4, 3, 3, 4};
@@ -445,6 +526,7 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
 
   glDeleteBuffers(1, &vbo);
   if (program != 0) glDeleteProgram(program);
+  if (texture_name != 0) glDeleteTextures(1, &texture_name);
   if (msaa.fbo != 0) {
     glDeleteFramebuffers(1, &msaa.fbo);
     glDeleteRenderbuffers(1, &msaa.color);
@@ -501,9 +583,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({1u, 4u}))
       ->capture_default_str();
   app.add_option("--shading", o.shading,
-                 "gouraud (the capture's colours), or phong: per-pixel Phong in GLSL of the "
-                 "varyings benchmarks/phong_workload.hpp makes from the capture")
-      ->check(CLI::IsMember({"gouraud", "phong"}))
+                 "gouraud (the capture's colours); phong: per-pixel Phong in GLSL of the "
+                 "varyings benchmarks/phong_workload.hpp makes from the capture; bilinear or "
+                 "trilinear: the texture of benchmarks/texture_workload.hpp times the colour")
+      ->check(CLI::IsMember({"gouraud", "phong", "bilinear", "trilinear"}))
       ->capture_default_str();
   app.add_option("--write-png", o.write_png,
                  "write llvmpipe's image of the capture (top row first, like tessera-render); "

@@ -32,6 +32,7 @@
 
 #include "benchmarks/frame_times.hpp"
 #include "benchmarks/phong_workload.hpp"
+#include "benchmarks/texture_workload.hpp"
 #include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 
@@ -83,7 +84,8 @@ void set_frame_counters(benchmark::State& state, double median_ms, double triang
 
 // shading "gouraud" draws the capture's colours; "phong" its Phong variant
 // (benchmarks/phong_workload.hpp); "user" the capture's colours through a user fragment
-// shader that copies them (FragmentShader::kUser).
+// shader that copies them (FragmentShader::kUser); "bilinear" and "trilinear" its textured
+// variant (benchmarks/texture_workload.hpp).
 void BM_Workload(benchmark::State& state, std::string name, std::string shading,
                  tessera::SimdTarget target, std::string target_name, bool best, uint32_t threads,
                  uint32_t samples, bool color) {
@@ -102,8 +104,12 @@ void BM_Workload(benchmark::State& state, std::string name, std::string shading,
   tessera::Renderer renderer(options);
   tessera::Framebuffer fb({capture->width, capture->height, samples, tessera::ColorFormat::kRGBA8});
   const bool phong = shading == "phong";
+  const bool textured = shading == "bilinear" || shading == "trilinear";
   tessera::PipelineState pipeline =
-      phong ? tessera::bench::phong_pipeline() : tessera::capture_pipeline();
+      phong      ? tessera::bench::phong_pipeline()
+      : textured ? tessera::bench::textured_pipeline(tessera::bench::benchmark_texture(),
+                                                     shading == "trilinear")
+                 : tessera::capture_pipeline();
   pipeline.color_write = color;
   if (shading == "user") {
     // A user fragment shader that does what the built-in Gouraud does: its colour varyings.
@@ -117,12 +123,15 @@ void BM_Workload(benchmark::State& state, std::string name, std::string shading,
       }
     };
   }
-  const std::vector<float> varyings =
-      phong ? tessera::bench::phong_varyings(*capture) : std::vector<float>{};
+  const std::vector<float> varyings = phong      ? tessera::bench::phong_varyings(*capture)
+                                      : textured ? tessera::bench::textured_varyings(*capture)
+                                                 : std::vector<float>{};
   tessera::DrawInput input;
   input.positions = capture->positions;
-  input.attributes = phong ? varyings : capture->varyings;
-  input.attribute_count = phong ? tessera::bench::kPhongVaryings : 4;
+  input.attributes = phong || textured ? varyings : capture->varyings;
+  input.attribute_count = phong      ? tessera::bench::kPhongVaryings
+                          : textured ? tessera::bench::kTexturedVaryings
+                                     : 4;
   renderer.draw(fb, pipeline, input);  // warm-up: the renderer's bins and setups reach size
   uint64_t samples_covered = 0;        // per frame, from one counted draw
   {
@@ -281,18 +290,23 @@ void register_all() {
       available.push_back({t, tessera::simd::resolve_target(t.target) == automatic});
     }
   }
-  // Gouraud at one and four samples, colour and depth only; Phong (colour) at one sample.
+  // Gouraud at one and four samples, colour and depth only; Phong (colour) at one sample; the
+  // textured variants (colour, one sample) of the grid and medium.
   for (const char* w : workloads) {
-    for (const char* shading : {"gouraud", "phong", "user"}) {
-      const bool phong = std::string(shading) == "phong";
+    for (const char* shading : {"gouraud", "phong", "user", "bilinear", "trilinear"}) {
+      const bool gouraud = std::string(shading) == "gouraud";
       const bool user = std::string(shading) == "user";
-      const std::string suffix = phong ? "/phong" : user ? "/user" : "";
+      const bool textured =
+          std::string(shading) == "bilinear" || std::string(shading) == "trilinear";
+      if (textured && std::string(w) != "grid" && std::string(w) != "medium") continue;
+      std::string suffix;  // built by appending: GCC 12 warns falsely on "/" + std::string
+      if (!gouraud) suffix.append("/").append(shading);
       for (uint32_t samples : {1u, 4u}) {
-        if (phong && samples != 1) continue;
+        if (!gouraud && !user && samples != 1) continue;
         for (uint32_t threads : {1u, 2u}) {
           for (const auto& [t, best] : available) {
             for (bool color : {true, false}) {
-              if ((phong || user) && !color) continue;
+              if (!gouraud && !color) continue;
               const std::string label = std::string(w) + suffix + "/fast/" + t.name +
                                         "/threads:" + std::to_string(threads) +
                                         "/samples:" + std::to_string(samples) +
@@ -307,7 +321,7 @@ void register_all() {
           // After Tessera's cases of the same workload, sample and thread count, for the ratio
           // (a user shader's colour is the Gouraud draw's: no llvmpipe case of its own).
           if (user) continue;
-          const std::string label = std::string(w) + (phong ? "/phong" : "") +
+          const std::string label = std::string(w) + suffix +
                                     "/llvmpipe/threads:" + std::to_string(threads) +
                                     "/samples:" + std::to_string(samples);
           benchmark::RegisterBenchmark(label.c_str(), BM_Llvmpipe, w, shading, threads, samples)
