@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "engine/src/reference/reference_sampler.hpp"
+#include "engine/src/texture/sample_batch.hpp"
+#include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 
 namespace tessera {
@@ -218,6 +220,100 @@ TEST(Texture, TheFloatSamplerMatchesTheDoubleReference) {
   }
   // Those near an edge are rare.
   EXPECT_LT(near_edges, checked / 100);
+}
+
+TEST(Texture, TheBatchSamplerGivesTheScalarSamplersBitsOnEveryTarget) {
+  // Power-of-two RGBA8 and sRGB textures (sampled in lanes), a non-power-of-two one (in lanes
+  // when clamped, fragment by fragment when repeated or mirrored) and a float one (fragment by
+  // fragment); batches of quads sharing derivatives from magnified to past the chain, with
+  // NaN, infinite and huge coordinates among them; every filter pairing, mip filter and wrap.
+  std::mt19937 rng(11);
+  const auto noise = [&](size_t n) {
+    std::vector<uint8_t> p(n);
+    for (uint8_t& b : p)
+      b = static_cast<uint8_t>(rng());
+    return p;
+  };
+  std::vector<float> f(16 * 8 * 4);
+  for (float& x : f)
+    x = static_cast<float>(rng() % 1000) / 250.0f - 1.0f;
+  const Texture textures[] = {
+      Texture({64, 32, TextureFormat::kRGBA8}, bytes_of(noise(64 * 32 * 4)), true),
+      Texture({32, 64, TextureFormat::kRGBA8Srgb}, bytes_of(noise(32 * 64 * 4)), true),
+      Texture({37, 23, TextureFormat::kRGBA8}, bytes_of(noise(37 * 23 * 4)), true),
+      Texture({16, 8, TextureFormat::kRGBA32F}, bytes_of(f), true)};
+  constexpr uint32_t kStride = kFragmentBatchStride;
+  std::uniform_real_distribution<float> coord(-3.0f, 4.0f), scale(-7.0f, 7.0f);
+  const float specials[] = {std::numeric_limits<float>::quiet_NaN(),
+                            std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity(),
+                            1e7f,
+                            -1e9f,
+                            0.5f};
+  const int64_t runnable = simd::runnable_target_bits();
+  int batches = 0;
+  for (const Texture& t : textures) {
+    for (const auto& [mag, min] :
+         {std::pair{Filter::kNearest, Filter::kNearest},
+          std::pair{Filter::kLinear, Filter::kLinear}, std::pair{Filter::kNearest, Filter::kLinear},
+          std::pair{Filter::kLinear, Filter::kNearest}}) {
+      for (MipFilter mip : {MipFilter::kNone, MipFilter::kNearest, MipFilter::kLinear}) {
+        for (Wrap wrap :
+             {Wrap::kRepeat, Wrap::kClampToEdge, Wrap::kMirroredRepeat, Wrap::kClampToBorder}) {
+          Sampler s;
+          s.mag_filter = mag;
+          s.min_filter = min;
+          s.mip_filter = mip;
+          s.wrap_u = wrap;
+          s.wrap_v = wrap == Wrap::kClampToBorder ? Wrap::kRepeat : Wrap::kClampToBorder;
+          s.border_color = {0.1f, -0.0f, 0.3f, 0.4f};
+          s.lod_bias = 0.25f;
+          std::array<std::vector<float>, 6> in;  // u, v, du/dx, dv/dx, du/dy, dv/dy
+          for (std::vector<float>& a : in)
+            a.resize(kStride);
+          const uint32_t count = 1 + static_cast<uint32_t>(rng() % kStride);
+          for (uint32_t i = 0; i < kStride; i += 4) {
+            const float d = std::exp2(scale(rng)) / 37.0f;
+            for (uint32_t k = i; k < i + 4; ++k) {
+              in[0][k] = rng() % 16 == 0 ? specials[rng() % 6] : coord(rng);
+              in[1][k] = rng() % 16 == 0 ? specials[rng() % 6] : coord(rng);
+              in[2][k] = d;
+              in[3][k] = 0.3f * d;
+              in[4][k] = -0.2f * d;
+              in[5][k] = d;
+            }
+          }
+          const texture::BatchCoordinates batch{in[0].data(), in[1].data(), in[2].data(),
+                                                in[3].data(), in[4].data(), in[5].data(),
+                                                count};
+          for (int64_t bits = runnable; bits != 0; bits &= bits - 1) {
+            const int64_t target = bits & -bits;
+            std::vector<float> rgba(4 * kStride, 7.0f);
+            texture::sample_batch(target, detail::TextureAccess::storage(t), s, batch, rgba.data());
+            for (uint32_t i = 0; i < kStride; ++i) {
+              const float lod = texture_lod(t, s, in[2][i], in[3][i], in[4][i], in[5][i]);
+              const std::array<float, 4> want = sample(t, s, in[0][i], in[1][i], lod);
+              for (uint32_t c = 0; c < 4; ++c) {
+                const float got = rgba[c * kStride + i];
+                if (i >= count) {
+                  ASSERT_EQ(got, 7.0f) << "fragment " << i << " past the batch was written";
+                  continue;
+                }
+                ASSERT_EQ(std::memcmp(&got, &want[c], sizeof got), 0)
+                    << simd::target_name(target) << ": format " << int(t.desc().format)
+                    << ", filters " << int(mag) << "/" << int(min) << ", mip " << int(mip)
+                    << ", wrap " << int(wrap) << ", fragment " << i << " at (" << in[0][i] << ", "
+                    << in[1][i] << ") lod " << lod << ", channel " << c << ": " << got
+                    << " against " << want[c];
+              }
+            }
+          }
+          ++batches;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(batches, 4 * 4 * 3 * 4);
 }
 
 TEST(Texture, NanInfiniteAndHugeCoordinatesHaveDefinedResults) {

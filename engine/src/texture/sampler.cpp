@@ -1,5 +1,8 @@
 // The engine's sampler: tessera/texture.hpp's rules (sampling.hpp) in float.
+#include "engine/src/texture/sample_batch.hpp"
 #include "engine/src/texture/sampling.hpp"
+#include "simd/dispatch.hpp"
+#include "tessera/error.hpp"
 
 namespace tessera {
 
@@ -16,20 +19,27 @@ std::array<float, 4> sample(const Texture& texture, const Sampler& sampler, floa
 
 void sample(const Texture& texture, const Sampler& sampler, const FragmentBatch& batch,
             uint32_t u_varying, uint32_t v_varying, float* rgba) {
+  // The automatic SIMD target (TESSERA_SIMD's when set): every target gives the same bits, so
+  // an unusable TESSERA_SIMD, which a renderer reports, falls back to the portable baseline.
+  static const int64_t target = [] {
+    try {
+      return simd::resolve_target(SimdTarget::kAuto);
+    } catch (const Error&) {
+      return int64_t{0};
+    }
+  }();
   constexpr uint32_t kStride = kFragmentBatchStride;
-  const Texture::Storage& s = detail::TextureAccess::storage(texture);
-  const float* u = batch.varyings + size_t{u_varying} * kStride;
-  const float* v = batch.varyings + size_t{v_varying} * kStride;
-  const float* du_dx = batch.ddx + size_t{u_varying} * kStride;
-  const float* dv_dx = batch.ddx + size_t{v_varying} * kStride;
-  const float* du_dy = batch.ddy + size_t{u_varying} * kStride;
-  const float* dv_dy = batch.ddy + size_t{v_varying} * kStride;
-  for (uint32_t i = 0; i < batch.count; ++i) {
-    const float lambda = texture::lod<float>(s, sampler, du_dx[i], dv_dx[i], du_dy[i], dv_dy[i]);
-    const std::array<float, 4> c = texture::sample<float>(s, sampler, u[i], v[i], lambda);
-    for (uint32_t k = 0; k < 4; ++k)
-      rgba[k * kStride + i] = c[k];
-  }
+  const auto row = [](const float* values, uint32_t varying) {
+    return values + size_t{varying} * kStride;
+  };
+  const texture::BatchCoordinates in{row(batch.varyings, u_varying),
+                                     row(batch.varyings, v_varying),
+                                     row(batch.ddx, u_varying),
+                                     row(batch.ddx, v_varying),
+                                     row(batch.ddy, u_varying),
+                                     row(batch.ddy, v_varying),
+                                     batch.count};
+  texture::sample_batch(target, detail::TextureAccess::storage(texture), sampler, in, rgba);
 }
 
 }  // namespace tessera

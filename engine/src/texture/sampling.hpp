@@ -93,34 +93,50 @@ T lod(const Texture::Storage& s, const Sampler& sampler, T du_dx, T dv_dx, T du_
   return std::clamp(lambda, T(sampler.min_lod), T(sampler.max_lod));
 }
 
+// The level(s) a sample at level of detail `lambda` reads, with which filter: `first` alone,
+// or `first` and `second` blended by `weight` (a + weight (b - a)) when `blend`.
 template <class T>
-std::array<T, 4> sample(const Texture::Storage& s, const Sampler& sampler, T u, T v, T lambda) {
+struct LevelChoice {
+  uint32_t first = 0, second = 0;
+  T weight = T(0);
+  Filter filter = Filter::kNearest;
+  bool blend = false;
+};
+
+template <class T>
+LevelChoice<T> choose_levels(const Texture::Storage& s, const Sampler& sampler, T lambda) {
   if (!(lambda == lambda)) lambda = T(0);
-  if (lambda <= T(0)) return sample_level<T>(s, sampler, 0, sampler.mag_filter, u, v);
+  if (lambda <= T(0)) return {0, 0, T(0), sampler.mag_filter, false};
   const uint32_t last = static_cast<uint32_t>(s.levels.size()) - 1;
   switch (sampler.mip_filter) {
     case MipFilter::kNone:
-      return sample_level<T>(s, sampler, 0, sampler.min_filter, u, v);
+      break;
     case MipFilter::kNearest: {
       // Level ceil(lambda + 1/2) - 1 (0 up to lambda = 1/2), clamped to the chain.
       const T d = lambda <= T(0.5) ? T(0) : std::ceil(lambda + T(0.5)) - T(1);
       const uint32_t level = d >= T(last) ? last : static_cast<uint32_t>(d);
-      return sample_level<T>(s, sampler, level, sampler.min_filter, u, v);
+      return {level, level, T(0), sampler.min_filter, false};
     }
     case MipFilter::kLinear: {
-      if (lambda >= T(last)) return sample_level<T>(s, sampler, last, sampler.min_filter, u, v);
+      if (lambda >= T(last)) return {last, last, T(0), sampler.min_filter, false};
       const T f = std::floor(lambda);
       const uint32_t d1 = static_cast<uint32_t>(f);
-      const T frac = lambda - f;
-      const auto a = sample_level<T>(s, sampler, d1, sampler.min_filter, u, v);
-      const auto b = sample_level<T>(s, sampler, d1 + 1, sampler.min_filter, u, v);
-      std::array<T, 4> out;
-      for (int c = 0; c < 4; ++c)
-        out[c] = a[c] + frac * (b[c] - a[c]);
-      return out;
+      return {d1, d1 + 1, lambda - f, sampler.min_filter, true};
     }
   }
-  return {};
+  return {0, 0, T(0), sampler.min_filter, false};
+}
+
+template <class T>
+std::array<T, 4> sample(const Texture::Storage& s, const Sampler& sampler, T u, T v, T lambda) {
+  const LevelChoice<T> c = choose_levels<T>(s, sampler, lambda);
+  const auto a = sample_level<T>(s, sampler, c.first, c.filter, u, v);
+  if (!c.blend) return a;
+  const auto b = sample_level<T>(s, sampler, c.second, c.filter, u, v);
+  std::array<T, 4> out;
+  for (int k = 0; k < 4; ++k)
+    out[k] = a[k] + c.weight * (b[k] - a[k]);
+  return out;
 }
 
 }  // namespace tessera::texture

@@ -1,5 +1,5 @@
 // A texture's storage and texel decoding (tessera/texture.hpp), shared by the sampler
-// (sampler-inl.h) in float and in double.
+// (sampling.hpp) in float and in double, and by the SIMD sampler (sample_batch-inl.h).
 #pragma once
 
 #include <array>
@@ -48,11 +48,31 @@ inline double srgb_to_linear(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
-// A texel as linear RGBA in T (float or double): 8-bit values over 255 (sRGB's RGB decoded in
+// The linear value of every sRGB-encoded byte in T, computed once in double: the same values
+// as the formula's.
+template <class T>
+const std::array<T, 256>& srgb_table() {
+  static const std::array<T, 256> table = [] {
+    std::array<T, 256> t;
+    for (int i = 0; i < 256; ++i)
+      t[i] = static_cast<T>(srgb_to_linear(i / 255.0));
+    return t;
+  }();
+  return table;
+}
+
+// An 8-bit unorm value in T: c / 255 rounded to T (in float the same value as c / 255.0
+// rounded to float, for every byte), a division the SIMD sampler repeats in lanes.
+template <class T>
+T unorm8(uint8_t c) {
+  return static_cast<T>(c) / T(255);
+}
+
+// A texel as linear RGBA in T (float or double): 8-bit values as unorm8 (sRGB's RGB decoded in
 // double, then rounded to T), floats as stored, red formats (r, 0, 0, 1).
 template <class T>
 std::array<T, 4> decode(TextureFormat format, const std::byte* p) {
-  const auto unorm = [&](int c) { return static_cast<T>(std::to_integer<uint8_t>(p[c]) / 255.0); };
+  const auto unorm = [&](int c) { return unorm8<T>(std::to_integer<uint8_t>(p[c])); };
   const auto f32 = [&](int c) {
     float v;
     std::memcpy(&v, p + 4 * c, sizeof v);
@@ -62,13 +82,7 @@ std::array<T, 4> decode(TextureFormat format, const std::byte* p) {
     case TextureFormat::kRGBA8:
       return {unorm(0), unorm(1), unorm(2), unorm(3)};
     case TextureFormat::kRGBA8Srgb: {
-      // The decoded value of every byte, computed once: the same values as the formula's.
-      static const std::array<T, 256> table = [] {
-        std::array<T, 256> t;
-        for (int i = 0; i < 256; ++i)
-          t[i] = static_cast<T>(srgb_to_linear(i / 255.0));
-        return t;
-      }();
+      const std::array<T, 256>& table = srgb_table<T>();
       const auto s = [&](int c) { return table[std::to_integer<uint8_t>(p[c])]; };
       return {s(0), s(1), s(2), unorm(3)};
     }
