@@ -1,5 +1,6 @@
-// The SIMD sampler (sample_batch.cpp): tessera/texture.hpp's sampling rules over a batch of
-// fragments, for the batch form of tessera::sample and the engine's textured shader.
+// The SIMD sampler: tessera/texture.hpp's sampling rules in lanes (sample_lanes-inl.h), for the
+// batch form of tessera::sample (sample_batch.cpp), the quad back end's textured targets and
+// the fast engine's textured shader (shade-inl.h).
 #pragma once
 
 #include <cstdint>
@@ -7,6 +8,24 @@
 #include "engine/src/texture/texture_storage.hpp"
 
 namespace tessera::texture {
+
+// A texture and sampler as the lanes read them: the texels as 32-bit words, each level's size
+// and first texel, the sRGB table, the wrap modes and the border colour.
+struct LaneTexture {
+  static constexpr uint32_t kMaxLevels = 16;  // a 16384-texel side has 15
+  const Texture::Storage* storage = nullptr;
+  Sampler sampler;
+  const int32_t* texels = nullptr;
+  alignas(64) int32_t width[kMaxLevels] = {};
+  alignas(64) int32_t height[kMaxLevels] = {};
+  alignas(64) int32_t offset[kMaxLevels] = {};
+  const float* srgb = nullptr;  // null for linear RGBA8
+};
+
+// Whether the lanes sample `storage` with `sampler`: RGBA8 and sRGB textures, except with
+// repeat or mirrored wrapping on a side that is not a power of two. When they do, fills `out`
+// (which refers to `storage` from then on).
+bool lanes_apply(const Texture::Storage& storage, const Sampler& sampler, LaneTexture& out);
 
 // A batch's texture coordinates and their derivatives per pixel step, `count` (at most
 // kFragmentBatchStride) values each.
@@ -24,8 +43,7 @@ struct BatchCoordinates {
 // from its derivatives (lod()), into rgba[c * kFragmentBatchStride + i] for channel c of
 // fragment i < count: the same bits as the scalar sampler, on the SIMD target `target` (a
 // Highway target bit, as simd::resolve_target gives; one this build lacks runs the portable
-// baseline). RGBA8 and sRGB textures are sampled in SIMD lanes, except with repeat or mirrored
-// wrapping on a side that is not a power of two; the rest fragment by fragment.
+// baseline): in lanes where lanes_apply, else fragment by fragment.
 void sample_batch(int64_t target, const Texture::Storage& storage, const Sampler& sampler,
                   const BatchCoordinates& in, float* rgba);
 

@@ -82,15 +82,21 @@ std::array<T, 4> sample_level(const Texture::Storage& s, const Sampler& sampler,
   return out;
 }
 
+// The level of detail of a footprint of rho level-0 texels (the SIMD sampler computes rho in
+// lanes with lod()'s operations and finishes here).
+template <class T>
+T lod_of_rho(const Sampler& sampler, T rho) {
+  const T lambda = std::log2(rho) + T(sampler.lod_bias);  // -inf for rho = 0
+  if (!(lambda == lambda)) return T(0);                   // NaN derivatives
+  return std::clamp(lambda, T(sampler.min_lod), T(sampler.max_lod));
+}
+
 template <class T>
 T lod(const Texture::Storage& s, const Sampler& sampler, T du_dx, T dv_dx, T du_dy, T dv_dy) {
   const T w = T(s.desc.width), h = T(s.desc.height);
   const T x = std::sqrt(du_dx * w * (du_dx * w) + dv_dx * h * (dv_dx * h));
   const T y = std::sqrt(du_dy * w * (du_dy * w) + dv_dy * h * (dv_dy * h));
-  const T rho = std::max(x, y);
-  const T lambda = std::log2(rho) + T(sampler.lod_bias);  // -inf for rho = 0
-  if (!(lambda == lambda)) return T(0);                   // NaN derivatives
-  return std::clamp(lambda, T(sampler.min_lod), T(sampler.max_lod));
+  return lod_of_rho<T>(sampler, std::max(x, y));
 }
 
 // The level(s) a sample at level of detail `lambda` reads, with which filter: `first` alone,

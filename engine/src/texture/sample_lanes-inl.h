@@ -1,0 +1,206 @@
+// The SIMD sampler's lanes (sample_batch.hpp), written once against Highway for every target:
+// tessera/texture.hpp's rules with the scalar sampler's operations (sampling.hpp) in its order
+// (multiplies and adds, no contraction), so every target gives the scalar sampler's bits. Each
+// lane's level of detail and level choice come from the scalar rules (lod_of_rho(),
+// choose_levels()) once per distinct footprint in the lane group (a quad's fragments share
+// theirs); the texel positions, wrapping, gathers, decoding and filtering run in lanes.
+
+// Per-target include guard (see engine/src/fast/block_kernel-inl.h).
+#if defined(TESSERA_ENGINE_SRC_TEXTURE_SAMPLE_LANES_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef TESSERA_ENGINE_SRC_TEXTURE_SAMPLE_LANES_INL_H_
+#undef TESSERA_ENGINE_SRC_TEXTURE_SAMPLE_LANES_INL_H_
+#else
+#define TESSERA_ENGINE_SRC_TEXTURE_SAMPLE_LANES_INL_H_
+#endif
+
+#include <cstring>
+
+#include <hwy/highway.h>
+
+#include "engine/src/texture/sample_batch.hpp"
+#include "engine/src/texture/sampling.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace tessera::texture::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+inline constexpr float kLanePositionLimit = float(1 << 30);  // floor_index's clamp
+
+// Index i on an axis of n texels under `wrap` (n a power of two for repeat and mirrored
+// repeat), clamped into the axis; `inside` is false where the border replaces the texel.
+template <class DI, class VI = hn::Vec<DI>>
+HWY_INLINE VI wrap_lanes(DI di, VI i, VI n, Wrap wrap, hn::Mask<DI>& inside) {
+  const VI one = hn::Set(di, 1);
+  inside = hn::FirstN(di, hn::Lanes(di));
+  switch (wrap) {
+    case Wrap::kRepeat:
+      return hn::And(i, hn::Sub(n, one));
+    case Wrap::kMirroredRepeat: {
+      const VI last = hn::Sub(hn::Add(n, n), one);  // 2n - 1
+      const VI m = hn::And(i, last);
+      return hn::IfThenElse(hn::Lt(m, n), m, hn::Sub(last, m));
+    }
+    case Wrap::kClampToEdge:
+      break;
+    case Wrap::kClampToBorder:
+      inside = hn::And(hn::Gt(i, hn::Set(di, -1)), hn::Lt(i, n));  // no Ge for integers
+      break;
+  }
+  return hn::Min(hn::Max(i, hn::Zero(di)), hn::Sub(n, one));
+}
+
+// The texels at (x, y) of the level starting at `offset` with rows of `w` texels, decoded
+// (texture_storage.hpp's unorm8 and sRGB table), the border where `inside` is false.
+template <class DF, class VF = hn::Vec<DF>, class DI = hn::RebindToSigned<DF>,
+          class VI = hn::Vec<DI>>
+HWY_INLINE void fetch(DF df, const LaneTexture& src, VI offset, VI w, VI x, VI y,
+                      hn::Mask<DI> inside, VF& r, VF& g, VF& b, VF& a) {
+  const DI di;
+  const VI t = hn::GatherIndex(di, src.texels, hn::Add(offset, hn::Add(hn::Mul(y, w), x)));
+  const VI byte = hn::Set(di, 0xFF);
+  const VI c0 = hn::And(t, byte), c1 = hn::And(hn::ShiftRight<8>(t), byte);
+  const VI c2 = hn::And(hn::ShiftRight<16>(t), byte), c3 = hn::And(hn::ShiftRight<24>(t), byte);
+  const VF scale = hn::Set(df, 255.0f);
+  if (src.srgb != nullptr) {
+    r = hn::GatherIndex(df, src.srgb, c0);
+    g = hn::GatherIndex(df, src.srgb, c1);
+    b = hn::GatherIndex(df, src.srgb, c2);
+  } else {
+    r = hn::Div(hn::ConvertTo(df, c0), scale);
+    g = hn::Div(hn::ConvertTo(df, c1), scale);
+    b = hn::Div(hn::ConvertTo(df, c2), scale);
+  }
+  a = hn::Div(hn::ConvertTo(df, c3), scale);
+  const Sampler& s = src.sampler;
+  if (s.wrap_u == Wrap::kClampToBorder || s.wrap_v == Wrap::kClampToBorder) {
+    const auto in = hn::RebindMask(df, inside);
+    r = hn::IfThenElse(in, r, hn::Set(df, s.border_color[0]));
+    g = hn::IfThenElse(in, g, hn::Set(df, s.border_color[1]));
+    b = hn::IfThenElse(in, b, hn::Set(df, s.border_color[2]));
+    a = hn::IfThenElse(in, a, hn::Set(df, s.border_color[3]));
+  }
+}
+
+// `top` + weight (`bottom` - `top`), per channel, into the first four.
+template <class VF>
+HWY_INLINE void lerp(VF& r, VF& g, VF& b, VF& a, VF r1, VF g1, VF b1, VF a1, VF weight) {
+  r = hn::Add(r, hn::Mul(weight, hn::Sub(r1, r)));
+  g = hn::Add(g, hn::Mul(weight, hn::Sub(g1, g)));
+  b = hn::Add(b, hn::Mul(weight, hn::Sub(b1, b)));
+  a = hn::Add(a, hn::Mul(weight, hn::Sub(a1, a)));
+}
+
+// sample_level (sampling.hpp) in lanes: level `level` of each lane, nearest or linear.
+template <class DF, class VF = hn::Vec<DF>, class DI = hn::RebindToSigned<DF>,
+          class VI = hn::Vec<DI>>
+HWY_INLINE void sample_level(DF df, const LaneTexture& src, VI level, bool linear, VF u, VF v,
+                             VF& r, VF& g, VF& b, VF& a) {
+  const DI di;
+  const VI w = hn::GatherIndex(di, src.width, level), h = hn::GatherIndex(di, src.height, level);
+  const VI offset = hn::GatherIndex(di, src.offset, level);
+  const VF x = hn::Mul(u, hn::ConvertTo(df, w)), y = hn::Mul(v, hn::ConvertTo(df, h));
+  const VF lo = hn::Set(df, -kLanePositionLimit), hi = hn::Set(df, kLanePositionLimit);
+  hn::Mask<DI> in_x0, in_y0;
+  if (!linear) {
+    const VI i = hn::ConvertTo(di, hn::Floor(hn::Min(hn::Max(x, lo), hi)));
+    const VI j = hn::ConvertTo(di, hn::Floor(hn::Min(hn::Max(y, lo), hi)));
+    const VI xi = wrap_lanes(di, i, w, src.sampler.wrap_u, in_x0);
+    const VI yi = wrap_lanes(di, j, h, src.sampler.wrap_v, in_y0);
+    fetch(df, src, offset, w, xi, yi, hn::And(in_x0, in_y0), r, g, b, a);
+    return;
+  }
+  const VF half = hn::Set(df, 0.5f);
+  const VF xc = hn::Min(hn::Max(hn::Sub(x, half), lo), hi);
+  const VF yc = hn::Min(hn::Max(hn::Sub(y, half), lo), hi);
+  const VI i0 = hn::ConvertTo(di, hn::Floor(xc)), j0 = hn::ConvertTo(di, hn::Floor(yc));
+  const VF fa = hn::Sub(xc, hn::ConvertTo(df, i0)), fb = hn::Sub(yc, hn::ConvertTo(df, j0));
+  const VI one = hn::Set(di, 1);
+  hn::Mask<DI> in_x1, in_y1;
+  const VI x0 = wrap_lanes(di, i0, w, src.sampler.wrap_u, in_x0);
+  const VI x1 = wrap_lanes(di, hn::Add(i0, one), w, src.sampler.wrap_u, in_x1);
+  const VI y0 = wrap_lanes(di, j0, h, src.sampler.wrap_v, in_y0);
+  const VI y1 = wrap_lanes(di, hn::Add(j0, one), h, src.sampler.wrap_v, in_y1);
+  VF r10, g10, b10, a10, r01, g01, b01, a01, r11, g11, b11, a11;
+  fetch(df, src, offset, w, x0, y0, hn::And(in_x0, in_y0), r, g, b, a);
+  fetch(df, src, offset, w, x1, y0, hn::And(in_x1, in_y0), r10, g10, b10, a10);
+  fetch(df, src, offset, w, x0, y1, hn::And(in_x0, in_y1), r01, g01, b01, a01);
+  fetch(df, src, offset, w, x1, y1, hn::And(in_x1, in_y1), r11, g11, b11, a11);
+  lerp(r, g, b, a, r10, g10, b10, a10, fa);          // top
+  lerp(r01, g01, b01, a01, r11, g11, b11, a11, fa);  // bottom
+  lerp(r, g, b, a, r01, g01, b01, a01, fb);
+}
+
+// The level filter per lane: nearest, linear, or each lane's own (`linear_lanes`).
+template <class DF, class VF = hn::Vec<DF>, class DI = hn::RebindToSigned<DF>,
+          class VI = hn::Vec<DI>>
+HWY_INLINE void sample_level_mixed(DF df, const LaneTexture& src, VI level,
+                                   hn::Mask<DI> linear_lanes, VF u, VF v, VF& r, VF& g, VF& b,
+                                   VF& a) {
+  const DI di;
+  if (hn::AllTrue(di, linear_lanes)) return sample_level(df, src, level, true, u, v, r, g, b, a);
+  if (hn::AllFalse(di, linear_lanes)) {
+    return sample_level(df, src, level, false, u, v, r, g, b, a);
+  }
+  VF r1, g1, b1, a1;
+  sample_level(df, src, level, false, u, v, r, g, b, a);
+  sample_level(df, src, level, true, u, v, r1, g1, b1, a1);
+  const auto m = hn::RebindMask(df, linear_lanes);
+  r = hn::IfThenElse(m, r1, r);
+  g = hn::IfThenElse(m, g1, g);
+  b = hn::IfThenElse(m, b1, b);
+  a = hn::IfThenElse(m, a1, a);
+}
+
+// The filtered, linear RGBA of each lane at (u, v) (NaN read as 0) with the level of detail
+// of its derivatives: sample() and lod() of sampling.hpp in lanes.
+template <class DF, class VF = hn::Vec<DF>>
+HWY_INLINE void sample_lanes(DF df, const LaneTexture& src, VF u, VF v, VF du_dx, VF dv_dx,
+                             VF du_dy, VF dv_dy, VF& r, VF& g, VF& b, VF& a) {
+  const hn::RebindToSigned<DF> di;
+  constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(float);
+  const Texture::Storage& s = *src.storage;
+  // The footprint in level-0 texels, as lod() computes it.
+  const VF w = hn::Set(df, static_cast<float>(s.desc.width));
+  const VF h = hn::Set(df, static_cast<float>(s.desc.height));
+  const auto length = [&](VF du, VF dv) {
+    const VF a0 = hn::Mul(du, w), b0 = hn::Mul(dv, h);
+    return hn::Sqrt(hn::Add(hn::Mul(a0, a0), hn::Mul(b0, b0)));
+  };
+  const VF x = length(du_dx, dv_dx), y = length(du_dy, dv_dy);
+  const VF rho = hn::IfThenElse(hn::Lt(x, y), y, x);  // std::max(x, y), also for NaN
+  alignas(64) float rhos[kMaxLanes], weight[kMaxLanes];
+  alignas(64) int32_t first[kMaxLanes], second[kMaxLanes], linear[kMaxLanes], blend[kMaxLanes];
+  hn::Store(rho, df, rhos);
+  const size_t lanes = hn::Lanes(df);
+  LevelChoice<float> choice;
+  for (size_t i = 0; i < lanes; ++i) {
+    if (i == 0 || std::memcmp(&rhos[i], &rhos[i - 1], sizeof(float)) != 0) {
+      choice = choose_levels<float>(s, src.sampler, lod_of_rho<float>(src.sampler, rhos[i]));
+    }
+    first[i] = static_cast<int32_t>(choice.first);
+    second[i] = static_cast<int32_t>(choice.second);
+    weight[i] = choice.weight;
+    linear[i] = choice.filter == Filter::kLinear ? -1 : 0;
+    blend[i] = choice.blend ? -1 : 0;
+  }
+  u = hn::IfThenElseZero(hn::Eq(u, u), u);
+  v = hn::IfThenElseZero(hn::Eq(v, v), v);
+  const auto linear_lanes = hn::Ne(hn::Load(di, linear), hn::Zero(di));
+  sample_level_mixed(df, src, hn::Load(di, first), linear_lanes, u, v, r, g, b, a);
+  const auto blend_lanes = hn::Ne(hn::Load(di, blend), hn::Zero(di));
+  if (hn::AllFalse(di, blend_lanes)) return;
+  VF r1, g1, b1, a1;
+  sample_level_mixed(df, src, hn::Load(di, second), linear_lanes, u, v, r1, g1, b1, a1);
+  VF rb = r, gb = g, bb = b, ab = a;
+  lerp(rb, gb, bb, ab, r1, g1, b1, a1, hn::Load(df, weight));
+  const auto m = hn::RebindMask(df, blend_lanes);
+  r = hn::IfThenElse(m, rb, r);
+  g = hn::IfThenElse(m, gb, g);
+  b = hn::IfThenElse(m, bb, b);
+  a = hn::IfThenElse(m, ab, a);
+}
+
+}  // namespace tessera::texture::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // per-target include guard
