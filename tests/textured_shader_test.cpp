@@ -145,6 +145,46 @@ TEST(TexturedShader, MatchesTheReferenceOnEveryTargetAndThreadCount) {
   }
 }
 
+// The fast engine draws a textured triangle in its raster kernels' lanes (Shader::kTextured)
+// where the sampler's lanes take the texture (the test's 64x32 RGBA8 one), and through the quad
+// back end otherwise (several colour targets, other formats). Both form the same values,
+// derivatives and samples: the lanes give the bytes of a user shader that samples the texture
+// and scales it by the colour varyings, on every target, in RGBA8 and RGBA32F, at one and four
+// samples.
+TEST(TexturedShader, TheLanePathGivesTheQuadBackEndsBytes) {
+  const std::vector<Target> targets = shading_scene::fast_targets();
+  for (const Case& c : cases()) {
+    const PipelineState lanes = textured(c.sampler);
+    PipelineState quads = lanes;
+    quads.shader = FragmentShader::kUser;
+    const std::shared_ptr<const Texture> texture = lanes.texture;
+    const Sampler sampler = c.sampler;
+    quads.fragment_function = [texture, sampler](const FragmentBatch& b,
+                                                 const FragmentOutput& out) {
+      constexpr uint32_t kStride = kFragmentBatchStride;
+      alignas(64) float texel[4 * kStride];
+      sample(*texture, sampler, b, 7, 8, texel);
+      for (uint32_t k = 0; k < 4; ++k) {
+        for (uint32_t i = 0; i < b.count; ++i)
+          out.color[k * kStride + i] = texel[k * kStride + i] * b.varyings[k * kStride + i];
+      }
+    };
+    for (const Target& t : targets) {
+      for (uint32_t samples : {1u, 4u}) {
+        const std::string where = c.name + ", " + std::to_string(samples) + " samples, target " +
+                                  std::to_string(int(t.simd)) + ", " + std::to_string(t.threads) +
+                                  " threads";
+        const Image want = render(quads, ColorFormat::kRGBA8, samples, Backend::kFast, t);
+        EXPECT_EQ(render(lanes, ColorFormat::kRGBA8, samples, Backend::kFast, t).rgba8, want.rgba8)
+            << where;
+      }
+      const Image want32 = render(quads, ColorFormat::kRGBA32F, 1, Backend::kFast, t);
+      EXPECT_EQ(render(lanes, ColorFormat::kRGBA32F, 1, Backend::kFast, t).rgba32f, want32.rgba32f)
+          << c.name << ", RGBA32F";
+    }
+  }
+}
+
 // The colour varyings scale the texel; without four of them the texel is drawn as it is.
 TEST(TexturedShader, TheColourVaryingsScaleTheTexel) {
   Sampler s;

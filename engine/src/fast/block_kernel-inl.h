@@ -660,7 +660,7 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
       };
       hn::Vec<decltype(df)> r, g, b, a;
       shade::HWY_NAMESPACE::shade_fragments<kShader>(
-          df, *tc.layout, {t.q0, t.q_dx, t.q_dy, t.flat_q, st.planes}, x, y,
+          df, *tc.layout, {t.q0, t.q_dx, t.q_dy, t.flat_q != 0, st.planes, t.x0, t.y0}, x, y,
           hn::RebindMask(df, any), first_sample, r, g, b, a);
       store_colour<kColor, kMulti, true>(df, tc, block, i, samples, any, passed, r, g, b, a);
     } else if constexpr (kColor != ColorMode::kOff) {

@@ -29,6 +29,7 @@ void FillShaderKernels(KernelTable& table);
 extern template void FillShaderKernels<shade::Shader::kInterpolated>(KernelTable& table);
 extern template void FillShaderKernels<shade::Shader::kNormalized>(KernelTable& table);
 extern template void FillShaderKernels<shade::Shader::kPhong>(KernelTable& table);
+extern template void FillShaderKernels<shade::Shader::kTextured>(KernelTable& table);
 extern template void FillShaderKernels<shade::Shader::kUser>(KernelTable& table);
 
 const KernelTable* GetKernelTable() {
@@ -40,6 +41,7 @@ const KernelTable* GetKernelTable() {
     FillShaderKernels<shade::Shader::kInterpolated>(t);
     FillShaderKernels<shade::Shader::kNormalized>(t);
     FillShaderKernels<shade::Shader::kPhong>(t);
+    FillShaderKernels<shade::Shader::kTextured>(t);
     FillShaderKernels<shade::Shader::kUser>(t);
     return t;
   }();

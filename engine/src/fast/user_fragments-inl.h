@@ -64,8 +64,8 @@ void shade_target(const shade::TargetShading& target, uint32_t index, const shad
   }
   const hn::ScalableTag<float> df;
   const size_t lanes = hn::Lanes(df);
-  const shade::HWY_NAMESPACE::FragmentPlanes p{t.q0, t.q_dx, t.q_dy, t.flat_q != 0,
-                                               planes + 3 * target.first};
+  const shade::HWY_NAMESPACE::FragmentPlanes p{
+      t.q0, t.q_dx, t.q_dy, t.flat_q != 0, planes + 3 * target.first, t.x0, t.y0};
   // The points are final: no lane moves to a sample (covered is empty).
   const auto none = [&](hn::Vec<decltype(df)>& ox, hn::Vec<decltype(df)>& oy) {
     ox = hn::Zero(df);

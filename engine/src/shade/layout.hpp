@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "engine/src/texture/sample_batch.hpp"
 #include "tessera/framebuffer.hpp"
 #include "tessera/pipeline.hpp"
 
@@ -22,10 +23,12 @@ enum class Shader : uint8_t {
   kInterpolated,  // each RGBA channel an interpolant or a constant
   kNormalized,    // interpolants 0..2 normalized, as RGB (A = 1): TargetOutput::kNormal
   kPhong,         // per-pixel Phong (PhongState) of the normal and position interpolants
+  kTextured,      // Layout::texture sampled in lanes at interpolants 0 and 1 (u, v), times the
+                  // colour interpolants 2..5 with has_color
   kUser,          // the quad back end (user_batch.hpp), for a user FragmentFunction, textured
                   // draws and framebuffers with several colour targets (Layout::targets)
 };
-inline constexpr int kShaders = 5;
+inline constexpr int kShaders = 6;
 
 // What a vertex carries for one interpolant.
 enum class Source : uint8_t {
@@ -79,6 +82,8 @@ struct Layout {
   bool has_color = false;
   PhongState phong{};  // the draw's material (phong.lights unused: see lights)
   std::array<PreparedLight, kMaxLights> lights{};
+  // kTextured: the pipeline's texture and sampler as the lanes read them (alive for the draw).
+  std::shared_ptr<const texture::LaneTexture> texture;
   // kUser: the pipeline's function (valid for the draw) where a target takes its values; the
   // draw's varyings as interpolants 0..function_varyings - 1 when the function or a texture
   // reads them; each colour target's shading; and the last interpolant, the primitive index's

@@ -17,6 +17,7 @@
 #include <hwy/highway.h>
 
 #include "engine/src/shade/layout.hpp"
+#include "engine/src/texture/sample_lanes-inl.h"
 #include "simd/math-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -31,6 +32,7 @@ struct FragmentPlanes {
   float q0, q_dx, q_dy;
   bool flat_q;
   const float* planes;
+  int32_t x0, y0;  // the plane origin's pixel: the 2x2 quads' alignment (kTextured)
 };
 
 // Vectors of three lanes-wide components travel as three arguments, never as a struct or an
@@ -128,6 +130,85 @@ HWY_INLINE void phong(DF df, const Layout& layout, VF nx, VF ny, VF nz, VF px, V
   b = clamp01(hn::Mul(ib, b));
 }
 
+// Interpolant j at lanes evaluated at (x, y), where 1/q = inv_q.
+template <class DF, class VF>
+HWY_INLINE VF interpolant(DF df, const Layout& layout, const FragmentPlanes& p, uint32_t j, VF x,
+                          VF y, VF inv_q) {
+  const float* plane = p.planes + 3 * j;
+  const auto v = hn::Add(hn::Set(df, plane[0]), hn::Add(hn::Mul(hn::Set(df, plane[1]), x),
+                                                        hn::Mul(hn::Set(df, plane[2]), y)));
+  return layout.values[j].mode == VaryingMode::kPerspective ? hn::Mul(v, inv_q) : v;
+}
+
+// The textured shader (Shader::kTextured) at lanes evaluated at (x, y) with 1/q = inv_q, whose
+// pixels are at (pixel_x, pixel_y): the texture sampled in lanes at interpolants 0 and 1, times
+// interpolants 2..5 with has_color. Not inlined: one call per lane group costs little, and the
+// sampler's lanes inlined into every raster path would multiply the kernels' size.
+template <class DF, class VF>
+HWY_NOINLINE void shade_textured(DF df, const Layout& layout, const FragmentPlanes& p, VF x, VF y,
+                                 VF pixel_x, VF pixel_y, VF inv_q, VF& r, VF& g, VF& b, VF& a) {
+  const auto value = [&](uint32_t j) { return interpolant(df, layout, p, j, x, y, inv_q); };
+  // The derivatives of (u, v) at the centre of the lane's 2x2 quad (quads align to even
+  // pixels), or where that lies beyond the horizon at the lane's own point, exactly as the
+  // quad back end forms them (engine/src/fast/user_fragments-inl.h): d(a / q)/dx = (a_x -
+  // (a / q) q_x) / q for a perspective-correct value, the plane's gradient for an affine one,
+  // 0 for a flat one.
+  const auto centre = [&](VF offset, int32_t origin) {
+    const auto absolute = hn::Add(offset, hn::Set(df, static_cast<float>(origin)));
+    const auto odd = hn::Sub(
+        absolute, hn::Mul(hn::Set(df, 2.0f), hn::Floor(hn::Mul(absolute, hn::Set(df, 0.5f)))));
+    return hn::Add(hn::Sub(offset, odd), hn::Set(df, 0.5f));
+  };
+  auto cx = centre(pixel_x, p.x0), cy = centre(pixel_y, p.y0);
+  auto inv_qc = hn::Set(df, 1.0f);
+  const float q_dx = p.flat_q ? 0.0f : p.q_dx, q_dy = p.flat_q ? 0.0f : p.q_dy;
+  if (!p.flat_q) {
+    auto qc = hn::Add(hn::Set(df, p.q0),
+                      hn::Add(hn::Mul(hn::Set(df, q_dx), cx), hn::Mul(hn::Set(df, q_dy), cy)));
+    const auto behind = hn::Not(hn::Gt(qc, hn::Zero(df)));
+    if (HWY_UNLIKELY(!hn::AllFalse(df, behind))) {
+      cx = hn::IfThenElse(behind, x, cx);
+      cy = hn::IfThenElse(behind, y, cy);
+      const auto q = hn::Add(hn::Set(df, p.q0),
+                             hn::Add(hn::Mul(hn::Set(df, q_dx), x), hn::Mul(hn::Set(df, q_dy), y)));
+      qc = hn::IfThenElse(behind, q, qc);
+    }
+    inv_qc = hn::Div(hn::Set(df, 1.0f), qc);
+  }
+  const auto derivatives = [&](uint32_t j, VF& ddx, VF& ddy) {
+    const float* plane = p.planes + 3 * j;
+    switch (layout.values[j].mode) {
+      case VaryingMode::kPerspective: {
+        const auto v =
+            hn::Mul(hn::Add(hn::Set(df, plane[0]), hn::Add(hn::Mul(hn::Set(df, plane[1]), cx),
+                                                           hn::Mul(hn::Set(df, plane[2]), cy))),
+                    inv_qc);
+        ddx = hn::Mul(hn::Sub(hn::Set(df, plane[1]), hn::Mul(v, hn::Set(df, q_dx))), inv_qc);
+        ddy = hn::Mul(hn::Sub(hn::Set(df, plane[2]), hn::Mul(v, hn::Set(df, q_dy))), inv_qc);
+        break;
+      }
+      case VaryingMode::kAffine:
+        ddx = hn::Set(df, plane[1]);
+        ddy = hn::Set(df, plane[2]);
+        break;
+      default:
+        ddx = ddy = hn::Zero(df);
+        break;
+    }
+  };
+  VF du_dx, du_dy, dv_dx, dv_dy;
+  derivatives(0, du_dx, du_dy);
+  derivatives(1, dv_dx, dv_dy);
+  texture::HWY_NAMESPACE::sample_lanes(df, *layout.texture, value(0), value(1), du_dx, dv_dx, du_dy,
+                                       dv_dy, r, g, b, a);
+  if (layout.has_color) {
+    r = hn::Mul(r, value(2));
+    g = hn::Mul(g, value(3));
+    b = hn::Mul(b, value(4));
+    a = hn::Mul(a, value(5));
+  }
+}
+
 // The RGBA (r, g, b, a) of a lane group's fragments at pixel offsets (x, y) from the plane
 // origin, for the lanes in `covered` (the others' values are not used). Where the 1/w plane is
 // not positive at a covered lane's pixel centre (beyond the triangle's horizon), the planes are
@@ -137,6 +218,7 @@ template <Shader kShader, class DF, class VF, class M, class FirstSample>
 HWY_INLINE void shade_fragments(DF df, const Layout& layout, const FragmentPlanes& p, VF x, VF y,
                                 M covered, const FirstSample& first_sample, VF& r, VF& g, VF& b,
                                 VF& a) {
+  const VF pixel_x = x, pixel_y = y;  // before a move to a sample
   auto inv_q = hn::Set(df, 1.0f);
   if (!p.flat_q) {
     const auto q_at = [&] {
@@ -154,13 +236,7 @@ HWY_INLINE void shade_fragments(DF df, const Layout& layout, const FragmentPlane
     }
     inv_q = hn::Div(hn::Set(df, 1.0f), q);
   }
-  // Interpolant j at the lanes.
-  const auto value = [&](uint32_t j) {
-    const float* plane = p.planes + 3 * j;
-    const auto v = hn::Add(hn::Set(df, plane[0]), hn::Add(hn::Mul(hn::Set(df, plane[1]), x),
-                                                          hn::Mul(hn::Set(df, plane[2]), y)));
-    return layout.values[j].mode == VaryingMode::kPerspective ? hn::Mul(v, inv_q) : v;
-  };
+  const auto value = [&](uint32_t j) { return interpolant(df, layout, p, j, x, y, inv_q); };
   a = hn::Set(df, 1.0f);
   if constexpr (kShader == Shader::kInterpolated) {
     const auto channel = [&](int c) {
@@ -182,6 +258,8 @@ HWY_INLINE void shade_fragments(DF df, const Layout& layout, const FragmentPlane
     g = value(1);
     b = value(2);
     normalize(df, r, g, b);
+  } else if constexpr (kShader == Shader::kTextured) {
+    shade_textured(df, layout, p, x, y, pixel_x, pixel_y, inv_q, r, g, b, a);
   } else {
     static_assert(kShader == Shader::kPhong);
     // The base colour: the material's, times the colour varyings when the draw has them.
