@@ -13,6 +13,7 @@
 #define TESSERA_ENGINE_SRC_TEXTURE_SAMPLE_LANES_INL_H_
 #endif
 
+#include <algorithm>
 #include <cstring>
 
 #include <hwy/highway.h>
@@ -90,14 +91,23 @@ HWY_INLINE void lerp(VF& r, VF& g, VF& b, VF& a, VF r1, VF g1, VF b1, VF a1, VF 
   a = hn::Add(a, hn::Mul(weight, hn::Sub(a1, a)));
 }
 
-// sample_level (sampling.hpp) in lanes: level `level` of each lane, nearest or linear.
+// sample_level (sampling.hpp) in lanes: level `level` of each lane (`same` when every lane has
+// that one, else -1), nearest or linear.
 template <class DF, class VF = hn::Vec<DF>, class DI = hn::RebindToSigned<DF>,
           class VI = hn::Vec<DI>>
-HWY_INLINE void sample_level(DF df, const LaneTexture& src, VI level, bool linear, VF u, VF v,
-                             VF& r, VF& g, VF& b, VF& a) {
+HWY_INLINE void sample_level(DF df, const LaneTexture& src, VI level, int32_t same, bool linear,
+                             VF u, VF v, VF& r, VF& g, VF& b, VF& a) {
   const DI di;
-  const VI w = hn::GatherIndex(di, src.width, level), h = hn::GatherIndex(di, src.height, level);
-  const VI offset = hn::GatherIndex(di, src.offset, level);
+  VI w, h, offset;
+  if (same >= 0) {
+    w = hn::Set(di, src.width[same]);
+    h = hn::Set(di, src.height[same]);
+    offset = hn::Set(di, src.offset[same]);
+  } else {
+    w = hn::GatherIndex(di, src.width, level);
+    h = hn::GatherIndex(di, src.height, level);
+    offset = hn::GatherIndex(di, src.offset, level);
+  }
   const VF x = hn::Mul(u, hn::ConvertTo(df, w)), y = hn::Mul(v, hn::ConvertTo(df, h));
   const VF lo = hn::Set(df, -kLanePositionLimit), hi = hn::Set(df, kLanePositionLimit);
   hn::Mask<DI> in_x0, in_y0;
@@ -133,17 +143,19 @@ HWY_INLINE void sample_level(DF df, const LaneTexture& src, VI level, bool linea
 // The level filter per lane: nearest, linear, or each lane's own (`linear_lanes`).
 template <class DF, class VF = hn::Vec<DF>, class DI = hn::RebindToSigned<DF>,
           class VI = hn::Vec<DI>>
-HWY_INLINE void sample_level_mixed(DF df, const LaneTexture& src, VI level,
+HWY_INLINE void sample_level_mixed(DF df, const LaneTexture& src, VI level, int32_t same,
                                    hn::Mask<DI> linear_lanes, VF u, VF v, VF& r, VF& g, VF& b,
                                    VF& a) {
   const DI di;
-  if (hn::AllTrue(di, linear_lanes)) return sample_level(df, src, level, true, u, v, r, g, b, a);
+  if (hn::AllTrue(di, linear_lanes)) {
+    return sample_level(df, src, level, same, true, u, v, r, g, b, a);
+  }
   if (hn::AllFalse(di, linear_lanes)) {
-    return sample_level(df, src, level, false, u, v, r, g, b, a);
+    return sample_level(df, src, level, same, false, u, v, r, g, b, a);
   }
   VF r1, g1, b1, a1;
-  sample_level(df, src, level, false, u, v, r, g, b, a);
-  sample_level(df, src, level, true, u, v, r1, g1, b1, a1);
+  sample_level(df, src, level, same, false, u, v, r, g, b, a);
+  sample_level(df, src, level, same, true, u, v, r1, g1, b1, a1);
   const auto m = hn::RebindMask(df, linear_lanes);
   r = hn::IfThenElse(m, r1, r);
   g = hn::IfThenElse(m, g1, g);
@@ -172,25 +184,42 @@ HWY_INLINE void sample_lanes(DF df, const LaneTexture& src, VF u, VF v, VF du_dx
   alignas(64) int32_t first[kMaxLanes], second[kMaxLanes], linear[kMaxLanes], blend[kMaxLanes];
   hn::Store(rho, df, rhos);
   const size_t lanes = hn::Lanes(df);
-  LevelChoice<float> choice;
+  // The choices of the last few distinct footprints: a lane group holds parts of a few quads
+  // (a row of four on 16 lanes, then the row below), each with one footprint.
+  constexpr uint32_t kMemo = 4;
+  float memo_rho[kMemo];
+  LevelChoice<float> memo[kMemo];
+  uint32_t memo_count = 0, memo_next = 0;
+  int32_t same_first = -2, same_second = -2;  // -2: no lane yet; -1: lanes differ
   for (size_t i = 0; i < lanes; ++i) {
-    if (i == 0 || std::memcmp(&rhos[i], &rhos[i - 1], sizeof(float)) != 0) {
-      choice = choose_levels<float>(s, src.sampler, lod_of_rho<float>(src.sampler, rhos[i]));
+    uint32_t k = 0;
+    while (k < memo_count && std::memcmp(&memo_rho[k], &rhos[i], sizeof(float)) != 0)
+      ++k;
+    if (k == memo_count) {
+      k = memo_next;
+      memo_next = (memo_next + 1) % kMemo;
+      memo_count = std::min(memo_count + 1, kMemo);
+      memo_rho[k] = rhos[i];
+      memo[k] = choose_levels<float>(s, src.sampler, lod_of_rho<float>(src.sampler, rhos[i]));
     }
+    const LevelChoice<float>& choice = memo[k];
     first[i] = static_cast<int32_t>(choice.first);
     second[i] = static_cast<int32_t>(choice.second);
     weight[i] = choice.weight;
     linear[i] = choice.filter == Filter::kLinear ? -1 : 0;
     blend[i] = choice.blend ? -1 : 0;
+    same_first = same_first == -2 || same_first == first[i] ? first[i] : -1;
+    same_second = same_second == -2 || same_second == second[i] ? second[i] : -1;
   }
   u = hn::IfThenElseZero(hn::Eq(u, u), u);
   v = hn::IfThenElseZero(hn::Eq(v, v), v);
   const auto linear_lanes = hn::Ne(hn::Load(di, linear), hn::Zero(di));
-  sample_level_mixed(df, src, hn::Load(di, first), linear_lanes, u, v, r, g, b, a);
+  sample_level_mixed(df, src, hn::Load(di, first), same_first, linear_lanes, u, v, r, g, b, a);
   const auto blend_lanes = hn::Ne(hn::Load(di, blend), hn::Zero(di));
   if (hn::AllFalse(di, blend_lanes)) return;
   VF r1, g1, b1, a1;
-  sample_level_mixed(df, src, hn::Load(di, second), linear_lanes, u, v, r1, g1, b1, a1);
+  sample_level_mixed(df, src, hn::Load(di, second), same_second, linear_lanes, u, v, r1, g1, b1,
+                     a1);
   VF rb = r, gb = g, bb = b, ab = a;
   lerp(rb, gb, bb, ab, r1, g1, b1, a1, hn::Load(df, weight));
   const auto m = hn::RebindMask(df, blend_lanes);
