@@ -14,7 +14,8 @@
 #endif
 
 #include <algorithm>
-#include <cstring>
+#include <bit>
+#include <cstdint>
 
 #include <hwy/highway.h>
 
@@ -171,6 +172,15 @@ HWY_INLINE void sample_lanes(DF df, const LaneTexture& src, VF u, VF v, VF du_dx
   const hn::RebindToSigned<DF> di;
   constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(float);
   const Texture::Storage& s = *src.storage;
+  u = hn::IfThenElseZero(hn::Eq(u, u), u);
+  v = hn::IfThenElseZero(hn::Eq(v, v), v);
+  const Sampler& sampler = src.sampler;
+  if (sampler.mip_filter == MipFilter::kNone && sampler.mag_filter == sampler.min_filter) {
+    // Level 0 with the one filter whatever the level of detail (choose_levels): no footprint.
+    const bool linear = sampler.min_filter == Filter::kLinear;
+    const auto lanes_linear = linear ? hn::FirstN(di, hn::Lanes(di)) : hn::FirstN(di, 0);
+    return sample_level_mixed(df, src, hn::Zero(di), 0, lanes_linear, u, v, r, g, b, a);
+  }
   // The footprint in level-0 texels, as lod() computes it.
   const VF w = hn::Set(df, static_cast<float>(s.desc.width));
   const VF h = hn::Set(df, static_cast<float>(s.desc.height));
@@ -193,7 +203,8 @@ HWY_INLINE void sample_lanes(DF df, const LaneTexture& src, VF u, VF v, VF du_dx
   int32_t same_first = -2, same_second = -2;  // -2: no lane yet; -1: lanes differ
   for (size_t i = 0; i < lanes; ++i) {
     uint32_t k = 0;
-    while (k < memo_count && std::memcmp(&memo_rho[k], &rhos[i], sizeof(float)) != 0)
+    while (k < memo_count &&
+           std::bit_cast<uint32_t>(memo_rho[k]) != std::bit_cast<uint32_t>(rhos[i]))
       ++k;
     if (k == memo_count) {
       k = memo_next;
@@ -211,8 +222,6 @@ HWY_INLINE void sample_lanes(DF df, const LaneTexture& src, VF u, VF v, VF du_dx
     same_first = same_first == -2 || same_first == first[i] ? first[i] : -1;
     same_second = same_second == -2 || same_second == second[i] ? second[i] : -1;
   }
-  u = hn::IfThenElseZero(hn::Eq(u, u), u);
-  v = hn::IfThenElseZero(hn::Eq(v, v), v);
   const auto linear_lanes = hn::Ne(hn::Load(di, linear), hn::Zero(di));
   sample_level_mixed(df, src, hn::Load(di, first), same_first, linear_lanes, u, v, r, g, b, a);
   const auto blend_lanes = hn::Ne(hn::Load(di, blend), hn::Zero(di));
