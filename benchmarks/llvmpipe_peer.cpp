@@ -166,17 +166,34 @@ MsaaTarget make_msaa_target(uint32_t width, uint32_t height, uint32_t samples) {
   return t;
 }
 
-// A capture's vertices interleaved as the GL arrays read them: x y z w r g b a.
-std::vector<float> interleave(const tessera::Capture& capture) {
+// A capture's vertices interleaved as the GL arrays read them: x y z w, then the vertex's `n`
+// values of `varyings` (the capture's own colours: r g b a).
+std::vector<float> interleave(const tessera::Capture& capture, const std::vector<float>& varyings,
+                              size_t n) {
   std::vector<float> v;
-  v.reserve(capture.positions.size() * 8);
+  v.reserve(capture.positions.size() * (4 + n));
   for (size_t i = 0; i < capture.positions.size(); ++i) {
     const tessera::Float4& p = capture.positions[i];
     v.insert(v.end(), {p.x, p.y, p.z, p.w});
-    v.insert(v.end(), capture.varyings.begin() + static_cast<std::ptrdiff_t>(4 * i),
-             capture.varyings.begin() + static_cast<std::ptrdiff_t>(4 * i + 4));
+    v.insert(v.end(), varyings.begin() + static_cast<std::ptrdiff_t>(n * i),
+             varyings.begin() + static_cast<std::ptrdiff_t>(n * i + n));
   }
   return v;
+}
+
+// Generic vertex attributes 0, 1, ... of `sizes` floats each, packed in that order per vertex.
+void enable_attributes(std::initializer_list<GLint> sizes) {
+  GLsizei stride = 0;
+  for (const GLint size : sizes)
+    stride += size * static_cast<GLsizei>(sizeof(float));
+  GLuint index = 0;
+  size_t offset = 0;
+  for (const GLint size : sizes) {
+    glEnableVertexAttribArray(index);
+    glVertexAttribPointer(index++, size, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offset * sizeof(float)));
+    offset += static_cast<size_t>(size);
+  }
 }
 
 // The state a TRI1 capture is drawn with (capture.hpp, tessera::capture_pipeline()): clip
@@ -391,31 +408,12 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
   // Upload once: the timed frames draw from a buffer object, as an application would.
   const bool phong = o.shading == "phong";
   const bool textured = o.shading == "bilinear" || o.shading == "trilinear";
-  std::vector<float> vertices;
-  if (textured) {
-    // x y z w, then u v r g b a.
-    constexpr size_t kV = tessera::bench::kTexturedVaryings;
-    const std::vector<float> varyings = tessera::bench::textured_varyings(capture);
-    vertices.reserve(vertex_count * (4 + kV));
-    for (size_t i = 0; i < vertex_count; ++i) {
-      const tessera::Float4& p = capture.positions[i];
-      vertices.insert(vertices.end(), {p.x, p.y, p.z, p.w});
-      vertices.insert(vertices.end(), varyings.begin() + static_cast<std::ptrdiff_t>(kV * i),
-                      varyings.begin() + static_cast<std::ptrdiff_t>(kV * i + kV));
-    }
-  } else if (phong) {
-    // x y z w, then the ten Phong varyings.
-    const std::vector<float> varyings = tessera::bench::phong_varyings(capture);
-    vertices.reserve(vertex_count * 14);
-    for (size_t i = 0; i < vertex_count; ++i) {
-      const tessera::Float4& p = capture.positions[i];
-      vertices.insert(vertices.end(), {p.x, p.y, p.z, p.w});
-      vertices.insert(vertices.end(), varyings.begin() + static_cast<std::ptrdiff_t>(10 * i),
-                      varyings.begin() + static_cast<std::ptrdiff_t>(10 * i + 10));
-    }
-  } else {
-    vertices = interleave(capture);
-  }
+  const std::vector<float> vertices =
+      textured ? interleave(capture, tessera::bench::textured_varyings(capture),
+                            tessera::bench::kTexturedVaryings)
+      : phong  ? interleave(capture, tessera::bench::phong_varyings(capture),
+                            tessera::bench::kPhongVaryings)
+               : interleave(capture, capture.varyings, 4);
   GLuint vbo = 0;
   glGenBuffers(1, &vbo);
   glBindBuffer(GL_ARRAY_BUFFER, vbo);
@@ -426,24 +424,10 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
   if (textured) {
     program = use_textured_program(*tessera::bench::benchmark_texture(), o.shading == "trilinear",
                                    texture_name);
-    constexpr GLsizei kStride = 10 * sizeof(float);
-    const GLint sizes[] = {4, 2, 4};
-    const size_t offsets[] = {0, 4, 6};
-    for (GLuint i = 0; i < 3; ++i) {
-      glEnableVertexAttribArray(i);
-      glVertexAttribPointer(i, sizes[i], GL_FLOAT, GL_FALSE, kStride,
-                            reinterpret_cast<const void*>(offsets[i] * sizeof(float)));
-    }
+    enable_attributes({4, 2, 4});  // clip, texcoord, colour
   } else if (phong) {
     program = use_phong_program();
-    constexpr GLsizei kStride = 14 * sizeof(float);
-    const GLint sizes[] = {4, 3, 3, 4};
-    const size_t offsets[] = {0, 4, 7, 10};
-    for (GLuint i = 0; i < 4; ++i) {
-      glEnableVertexAttribArray(i);
-      glVertexAttribPointer(i, sizes[i], GL_FLOAT, GL_FALSE, kStride,
-                            reinterpret_cast<const void*>(offsets[i] * sizeof(float)));
-    }
+    enable_attributes({4, 3, 3, 4});  // clip, normal, position, colour
   } else {
     constexpr GLsizei kStride = 8 * sizeof(float);
     glEnableClientState(GL_VERTEX_ARRAY);

@@ -98,19 +98,8 @@ void shade_target(const shade::TargetShading& target, uint32_t index, const shad
   // The texel at the fragment's texture coordinates (the LOD from its quad's derivatives)
   // times the colour.
   alignas(64) float texel[4 * kStride];
-  const FragmentBatch view = batch.view();
-  const auto row = [](const float* values, uint32_t varying) {
-    return values + size_t{varying} * kStride;
-  };
-  const uint32_t tu = all.texcoord, tv = all.texcoord + 1;
-  const texture::BatchCoordinates in{row(view.varyings, tu),
-                                     row(view.varyings, tv),
-                                     row(view.ddx, tu),
-                                     row(view.ddx, tv),
-                                     row(view.ddy, tu),
-                                     row(view.ddy, tv),
-                                     count};
-  texture::sample_batch(HWY_TARGET, detail::TextureAccess::storage(*all.texture), all.sampler, in,
+  texture::sample_batch(HWY_TARGET, detail::TextureAccess::storage(*all.texture), all.sampler,
+                        texture::coordinates_of(batch.view(), all.texcoord, all.texcoord + 1),
                         texel);
   for (uint32_t c = 0; c < 4; ++c) {
     for (uint32_t i = 0; i < count; ++i)

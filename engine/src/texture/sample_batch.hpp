@@ -3,6 +3,7 @@
 // the fast engine's textured shader (shade-inl.h).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "engine/src/texture/texture_storage.hpp"
@@ -38,6 +39,21 @@ struct BatchCoordinates {
   const float* dv_dy;
   uint32_t count;
 };
+
+// A user shader's batch's varyings `u_varying` and `v_varying` and their derivatives.
+inline BatchCoordinates coordinates_of(const FragmentBatch& batch, uint32_t u_varying,
+                                       uint32_t v_varying) {
+  const auto row = [](const float* values, uint32_t varying) {
+    return values + size_t{varying} * kFragmentBatchStride;
+  };
+  return {row(batch.varyings, u_varying),
+          row(batch.varyings, v_varying),
+          row(batch.ddx, u_varying),
+          row(batch.ddx, v_varying),
+          row(batch.ddy, u_varying),
+          row(batch.ddy, v_varying),
+          batch.count};
+}
 
 // sample() (sampling.hpp, in float) at every fragment of the batch, with the level of detail
 // from its derivatives (lod()), into rgba[c * kFragmentBatchStride + i] for channel c of

@@ -28,18 +28,8 @@ void sample(const Texture& texture, const Sampler& sampler, const FragmentBatch&
       return int64_t{0};
     }
   }();
-  constexpr uint32_t kStride = kFragmentBatchStride;
-  const auto row = [](const float* values, uint32_t varying) {
-    return values + size_t{varying} * kStride;
-  };
-  const texture::BatchCoordinates in{row(batch.varyings, u_varying),
-                                     row(batch.varyings, v_varying),
-                                     row(batch.ddx, u_varying),
-                                     row(batch.ddx, v_varying),
-                                     row(batch.ddy, u_varying),
-                                     row(batch.ddy, v_varying),
-                                     batch.count};
-  texture::sample_batch(target, detail::TextureAccess::storage(texture), sampler, in, rgba);
+  texture::sample_batch(target, detail::TextureAccess::storage(texture), sampler,
+                        texture::coordinates_of(batch, u_varying, v_varying), rgba);
 }
 
 }  // namespace tessera
