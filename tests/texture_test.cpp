@@ -289,7 +289,11 @@ TEST(Texture, TheBatchSamplerGivesTheScalarSamplersBitsOnEveryTarget) {
           for (int64_t bits = runnable; bits != 0; bits &= bits - 1) {
             const int64_t target = bits & -bits;
             std::vector<float> rgba(4 * kStride, 7.0f);
-            texture::sample_batch(target, detail::TextureAccess::storage(t), s, batch, rgba.data());
+            const Texture::Storage& storage = detail::TextureAccess::storage(t);
+            texture::LaneTexture lanes;
+            const bool in_lanes = texture::lanes_apply(storage, s, lanes);
+            texture::sample_batch(target, storage, s, in_lanes ? &lanes : nullptr, batch,
+                                  rgba.data());
             for (uint32_t i = 0; i < kStride; ++i) {
               const float lod = texture_lod(t, s, in[2][i], in[3][i], in[4][i], in[5][i]);
               const std::array<float, 4> want = sample(t, s, in[0][i], in[1][i], lod);

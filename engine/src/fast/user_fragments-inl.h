@@ -98,9 +98,9 @@ void shade_target(const shade::TargetShading& target, uint32_t index, const shad
   // The texel at the fragment's texture coordinates (the LOD from its quad's derivatives)
   // times the colour.
   alignas(64) float texel[4 * kStride];
-  texture::sample_batch(HWY_TARGET, detail::TextureAccess::storage(*all.texture), all.sampler,
-                        texture::coordinates_of(batch.view(), all.texcoord, all.texcoord + 1),
-                        texel);
+  texture::sample_batch(
+      HWY_TARGET, detail::TextureAccess::storage(*all.texture), all.sampler, all.lanes.get(),
+      texture::coordinates_of(batch.view(), all.texcoord, all.texcoord + 1), texel);
   for (uint32_t c = 0; c < 4; ++c) {
     for (uint32_t i = 0; i < count; ++i)
       rgba[c * kStride + i] = texel[c * kStride + i] * rgba[c * kStride + i];

@@ -132,29 +132,34 @@ Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count,
   if (desc.extra_targets == 0 && !((user || textured) && pipeline.output == TargetOutput::kColor)) {
     return single_layout(pipeline, pipeline.output, attribute_count, true);
   }
-  if (desc.extra_targets == 0 && textured && pipeline.texture != nullptr) {
-    // The textured shader in the raster kernels' lanes, where the sampler's lanes take the
-    // texture: the texture coordinates, then the colour varyings when the draw has all four.
-    auto lanes = std::make_shared<texture::LaneTexture>();
-    if (texture::lanes_apply(detail::TextureAccess::storage(*pipeline.texture), pipeline.sampler,
-                             *lanes)) {
-      Layout layout;
-      const uint32_t color = pipeline.roles.color;
-      const uint32_t colours = attribute_count > color && attribute_count - color >= 4 ? 4 : 0;
-      const auto add = [&](uint32_t varying) {
-        const VaryingMode mode = resolved_mode(pipeline, varying);
-        layout.values[layout.count++] = {Source::kVarying, varying, mode};
-        layout.needs_q = layout.needs_q || mode == VaryingMode::kPerspective;
-      };
-      add(pipeline.roles.texcoord);
-      add(pipeline.roles.texcoord + 1);
-      for (uint32_t c = 0; c < colours; ++c)
-        add(pipeline.roles.color + c);
-      layout.shader = Shader::kTextured;
-      layout.has_color = colours == 4;
-      layout.texture = std::move(lanes);
-      return layout;
+  // The texture as the sampler's lanes read it, when they take it.
+  std::shared_ptr<texture::LaneTexture> lanes;
+  if (textured && pipeline.texture != nullptr) {
+    lanes = std::make_shared<texture::LaneTexture>();
+    if (!texture::lanes_apply(detail::TextureAccess::storage(*pipeline.texture), pipeline.sampler,
+                              *lanes)) {
+      lanes.reset();
     }
+  }
+  if (desc.extra_targets == 0 && lanes != nullptr) {
+    // The textured shader in the raster kernels' lanes: the texture coordinates, then the
+    // colour varyings when the draw has all four.
+    Layout layout;
+    const uint32_t color = pipeline.roles.color;
+    const uint32_t colours = attribute_count > color && attribute_count - color >= 4 ? 4 : 0;
+    const auto add = [&](uint32_t varying) {
+      const VaryingMode mode = resolved_mode(pipeline, varying);
+      layout.values[layout.count++] = {Source::kVarying, varying, mode};
+      layout.needs_q = layout.needs_q || mode == VaryingMode::kPerspective;
+    };
+    add(pipeline.roles.texcoord);
+    add(pipeline.roles.texcoord + 1);
+    for (uint32_t c = 0; c < colours; ++c)
+      add(pipeline.roles.color + c);
+    layout.shader = Shader::kTextured;
+    layout.has_color = colours == 4;
+    layout.texture = std::move(lanes);
+    return layout;
   }
   // The quad back end: the varyings (for the function, or the texture coordinates and their
   // derivatives), then each built-in target's interpolants, then the primitive index's bits.
@@ -186,6 +191,7 @@ Layout layout_for(const PipelineState& pipeline, uint32_t attribute_count,
   if (sampled) {
     targets->texture = pipeline.texture.get();
     targets->sampler = pipeline.sampler;
+    targets->lanes = std::move(lanes);
     targets->texcoord = pipeline.roles.texcoord;
   }
   for (uint32_t t = 0; t < targets->count; ++t) {

@@ -116,6 +116,7 @@ struct Targets {
   // its two texture coordinate varyings.
   const Texture* texture = nullptr;
   Sampler sampler;
+  std::shared_ptr<const texture::LaneTexture> lanes;  // how the lanes read them; null: they do not
   uint32_t texcoord = 0;
 };
 

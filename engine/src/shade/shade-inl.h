@@ -130,6 +130,13 @@ HWY_INLINE void phong(DF df, const Layout& layout, VF nx, VF ny, VF nz, VF px, V
   b = clamp01(hn::Mul(ib, b));
 }
 
+// The 1/w plane q at lanes evaluated at (x, y) (not flat_q).
+template <class DF, class VF>
+HWY_INLINE VF q_plane(DF df, const FragmentPlanes& p, VF x, VF y) {
+  return hn::Add(hn::Set(df, p.q0),
+                 hn::Add(hn::Mul(hn::Set(df, p.q_dx), x), hn::Mul(hn::Set(df, p.q_dy), y)));
+}
+
 // Interpolant j at lanes evaluated at (x, y), where 1/q = inv_q.
 template <class DF, class VF>
 HWY_INLINE VF interpolant(DF df, const Layout& layout, const FragmentPlanes& p, uint32_t j, VF x,
@@ -163,15 +170,12 @@ HWY_NOINLINE void shade_textured(DF df, const Layout& layout, const FragmentPlan
   auto inv_qc = hn::Set(df, 1.0f);
   const float q_dx = p.flat_q ? 0.0f : p.q_dx, q_dy = p.flat_q ? 0.0f : p.q_dy;
   if (!p.flat_q) {
-    auto qc = hn::Add(hn::Set(df, p.q0),
-                      hn::Add(hn::Mul(hn::Set(df, q_dx), cx), hn::Mul(hn::Set(df, q_dy), cy)));
+    auto qc = q_plane(df, p, cx, cy);
     const auto behind = hn::Not(hn::Gt(qc, hn::Zero(df)));
     if (HWY_UNLIKELY(!hn::AllFalse(df, behind))) {
       cx = hn::IfThenElse(behind, x, cx);
       cy = hn::IfThenElse(behind, y, cy);
-      const auto q = hn::Add(hn::Set(df, p.q0),
-                             hn::Add(hn::Mul(hn::Set(df, q_dx), x), hn::Mul(hn::Set(df, q_dy), y)));
-      qc = hn::IfThenElse(behind, q, qc);
+      qc = hn::IfThenElse(behind, q_plane(df, p, x, y), qc);
     }
     inv_qc = hn::Div(hn::Set(df, 1.0f), qc);
   }
@@ -179,10 +183,7 @@ HWY_NOINLINE void shade_textured(DF df, const Layout& layout, const FragmentPlan
     const float* plane = p.planes + 3 * j;
     switch (layout.values[j].mode) {
       case VaryingMode::kPerspective: {
-        const auto v =
-            hn::Mul(hn::Add(hn::Set(df, plane[0]), hn::Add(hn::Mul(hn::Set(df, plane[1]), cx),
-                                                           hn::Mul(hn::Set(df, plane[2]), cy))),
-                    inv_qc);
+        const auto v = interpolant(df, layout, p, j, cx, cy, inv_qc);
         ddx = hn::Mul(hn::Sub(hn::Set(df, plane[1]), hn::Mul(v, hn::Set(df, q_dx))), inv_qc);
         ddy = hn::Mul(hn::Sub(hn::Set(df, plane[2]), hn::Mul(v, hn::Set(df, q_dy))), inv_qc);
         break;
@@ -221,10 +222,7 @@ HWY_INLINE void shade_fragments(DF df, const Layout& layout, const FragmentPlane
   const VF pixel_x = x, pixel_y = y;  // before a move to a sample
   auto inv_q = hn::Set(df, 1.0f);
   if (!p.flat_q) {
-    const auto q_at = [&] {
-      return hn::Add(hn::Set(df, p.q0),
-                     hn::Add(hn::Mul(hn::Set(df, p.q_dx), x), hn::Mul(hn::Set(df, p.q_dy), y)));
-    };
+    const auto q_at = [&] { return q_plane(df, p, x, y); };
     auto q = q_at();
     const auto beyond = hn::AndNot(hn::Gt(q, hn::Zero(df)), covered);
     if (HWY_UNLIKELY(!hn::AllFalse(df, beyond))) {

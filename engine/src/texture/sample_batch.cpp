@@ -25,11 +25,10 @@ constexpr uint32_t kPadded = 2 * kStride;
 
 }  // namespace
 
-void SampleBatch(const Texture::Storage& s, const Sampler& sampler, const BatchCoordinates& in,
-                 float* rgba) {
+void SampleBatch(const Texture::Storage& s, const Sampler& sampler, const LaneTexture* src,
+                 const BatchCoordinates& in, float* rgba) {
   const uint32_t count = std::min(in.count, kStride);
-  LaneTexture src;
-  if (!lanes_apply(s, sampler, src)) {
+  if (src == nullptr) {
     for (uint32_t i = 0; i < count; ++i) {
       const float lambda =
           lod<float>(s, sampler, in.du_dx[i], in.dv_dx[i], in.du_dy[i], in.dv_dy[i]);
@@ -54,7 +53,7 @@ void SampleBatch(const Texture::Storage& s, const Sampler& sampler, const BatchC
   alignas(64) float out[4][kPadded];
   for (uint32_t i = 0; i < count; i += static_cast<uint32_t>(lanes)) {
     auto r = hn::Zero(df), g = r, b = r, a = r;
-    sample_lanes(df, src, hn::Load(df, values[0] + i), hn::Load(df, values[1] + i),
+    sample_lanes(df, *src, hn::Load(df, values[0] + i), hn::Load(df, values[1] + i),
                  hn::Load(df, values[2] + i), hn::Load(df, values[3] + i),
                  hn::Load(df, values[4] + i), hn::Load(df, values[5] + i), r, g, b, a);
     hn::Store(r, df, out[0] + i);
@@ -98,7 +97,8 @@ bool lanes_apply(const Texture::Storage& s, const Sampler& sampler, LaneTexture&
 }
 
 namespace {
-using SampleFn = void (*)(const Texture::Storage&, const Sampler&, const BatchCoordinates&, float*);
+using SampleFn = void (*)(const Texture::Storage&, const Sampler&, const LaneTexture*,
+                          const BatchCoordinates&, float*);
 #define TESSERA_TARGET_ENTRY(bit, ns) simd::TargetEntry<SampleFn>{bit, &ns::SampleBatch},
 constexpr simd::TargetEntry<SampleFn> kTargets[] = {
     TESSERA_FOR_EACH_SIMD_TARGET(TESSERA_TARGET_ENTRY)};
@@ -106,8 +106,8 @@ constexpr simd::TargetEntry<SampleFn> kTargets[] = {
 }  // namespace
 
 void sample_batch(int64_t target, const Texture::Storage& storage, const Sampler& sampler,
-                  const BatchCoordinates& in, float* rgba) {
-  simd::find_target(kTargets, target)(storage, sampler, in, rgba);
+                  const LaneTexture* lanes, const BatchCoordinates& in, float* rgba) {
+  simd::find_target(kTargets, target)(storage, sampler, lanes, in, rgba);
 }
 
 }  // namespace tessera::texture

@@ -59,8 +59,9 @@ inline BatchCoordinates coordinates_of(const FragmentBatch& batch, uint32_t u_va
 // from its derivatives (lod()), into rgba[c * kFragmentBatchStride + i] for channel c of
 // fragment i < count: the same bits as the scalar sampler, on the SIMD target `target` (a
 // Highway target bit, as simd::resolve_target gives; one this build lacks runs the portable
-// baseline): in lanes where lanes_apply, else fragment by fragment.
+// baseline): in lanes with `lanes` (what lanes_apply filled for this texture and sampler),
+// fragment by fragment without (null).
 void sample_batch(int64_t target, const Texture::Storage& storage, const Sampler& sampler,
-                  const BatchCoordinates& in, float* rgba);
+                  const LaneTexture* lanes, const BatchCoordinates& in, float* rgba);
 
 }  // namespace tessera::texture

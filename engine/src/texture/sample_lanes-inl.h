@@ -26,7 +26,14 @@ HWY_BEFORE_NAMESPACE();
 namespace tessera::texture::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-inline constexpr float kLanePositionLimit = float(1 << 30);  // floor_index's clamp
+// Where `mask` is set, (r1, g1, b1, a1) replace (r, g, b, a).
+template <class VF, class M>
+HWY_INLINE void select(M mask, VF& r, VF& g, VF& b, VF& a, VF r1, VF g1, VF b1, VF a1) {
+  r = hn::IfThenElse(mask, r1, r);
+  g = hn::IfThenElse(mask, g1, g);
+  b = hn::IfThenElse(mask, b1, b);
+  a = hn::IfThenElse(mask, a1, a);
+}
 
 // Index i on an axis of n texels under `wrap` (n a power of two for repeat and mirrored
 // repeat), clamped into the axis; `inside` is false where the border replaces the texel.
@@ -75,11 +82,9 @@ HWY_INLINE void fetch(DF df, const LaneTexture& src, VI offset, VI w, VI x, VI y
   a = hn::Div(hn::ConvertTo(df, c3), scale);
   const Sampler& s = src.sampler;
   if (s.wrap_u == Wrap::kClampToBorder || s.wrap_v == Wrap::kClampToBorder) {
-    const auto in = hn::RebindMask(df, inside);
-    r = hn::IfThenElse(in, r, hn::Set(df, s.border_color[0]));
-    g = hn::IfThenElse(in, g, hn::Set(df, s.border_color[1]));
-    b = hn::IfThenElse(in, b, hn::Set(df, s.border_color[2]));
-    a = hn::IfThenElse(in, a, hn::Set(df, s.border_color[3]));
+    select(hn::Not(hn::RebindMask(df, inside)), r, g, b, a, hn::Set(df, s.border_color[0]),
+           hn::Set(df, s.border_color[1]), hn::Set(df, s.border_color[2]),
+           hn::Set(df, s.border_color[3]));
   }
 }
 
@@ -110,7 +115,8 @@ HWY_INLINE void sample_level(DF df, const LaneTexture& src, VI level, int32_t sa
     offset = hn::GatherIndex(di, src.offset, level);
   }
   const VF x = hn::Mul(u, hn::ConvertTo(df, w)), y = hn::Mul(v, hn::ConvertTo(df, h));
-  const VF lo = hn::Set(df, -kLanePositionLimit), hi = hn::Set(df, kLanePositionLimit);
+  const VF lo = hn::Set(df, -static_cast<float>(kPositionLimit)),
+           hi = hn::Set(df, static_cast<float>(kPositionLimit));
   hn::Mask<DI> in_x0, in_y0;
   if (!linear) {
     const VI i = hn::ConvertTo(di, hn::Floor(hn::Min(hn::Max(x, lo), hi)));
@@ -157,11 +163,7 @@ HWY_INLINE void sample_level_mixed(DF df, const LaneTexture& src, VI level, int3
   VF r1, g1, b1, a1;
   sample_level(df, src, level, same, false, u, v, r, g, b, a);
   sample_level(df, src, level, same, true, u, v, r1, g1, b1, a1);
-  const auto m = hn::RebindMask(df, linear_lanes);
-  r = hn::IfThenElse(m, r1, r);
-  g = hn::IfThenElse(m, g1, g);
-  b = hn::IfThenElse(m, b1, b);
-  a = hn::IfThenElse(m, a1, a);
+  select(hn::RebindMask(df, linear_lanes), r, g, b, a, r1, g1, b1, a1);
 }
 
 // The filtered, linear RGBA of each lane at (u, v) (NaN read as 0) with the level of detail
@@ -231,11 +233,7 @@ HWY_INLINE void sample_lanes(DF df, const LaneTexture& src, VF u, VF v, VF du_dx
                      a1);
   VF rb = r, gb = g, bb = b, ab = a;
   lerp(rb, gb, bb, ab, r1, g1, b1, a1, hn::Load(df, weight));
-  const auto m = hn::RebindMask(df, blend_lanes);
-  r = hn::IfThenElse(m, rb, r);
-  g = hn::IfThenElse(m, gb, g);
-  b = hn::IfThenElse(m, bb, b);
-  a = hn::IfThenElse(m, ab, a);
+  select(hn::RebindMask(df, blend_lanes), r, g, b, a, rb, gb, bb, ab);
 }
 
 }  // namespace tessera::texture::HWY_NAMESPACE

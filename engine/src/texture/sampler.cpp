@@ -28,7 +28,10 @@ void sample(const Texture& texture, const Sampler& sampler, const FragmentBatch&
       return int64_t{0};
     }
   }();
-  texture::sample_batch(target, detail::TextureAccess::storage(texture), sampler,
+  const Texture::Storage& storage = detail::TextureAccess::storage(texture);
+  texture::LaneTexture lanes;
+  const bool in_lanes = texture::lanes_apply(storage, sampler, lanes);
+  texture::sample_batch(target, storage, sampler, in_lanes ? &lanes : nullptr,
                         texture::coordinates_of(batch, u_varying, v_varying), rgba);
 }
 

@@ -35,11 +35,14 @@ inline int64_t wrap_index(int64_t i, int64_t n, Wrap wrap) {
   return 0;
 }
 
+// How far from the origin texel positions are clamped, in texels (both samplers).
+inline constexpr int32_t kPositionLimit = 1 << 30;
+
 // floor(x) as an integer, x (not NaN: sample_level replaces NaN coordinates) clamped to
 // +-2^30 texels first.
 template <class T>
 int64_t floor_index(T x) {
-  constexpr T kLimit = T(1 << 30);
+  constexpr T kLimit = T(kPositionLimit);
   return static_cast<int64_t>(std::floor(std::clamp(x, -kLimit, kLimit)));
 }
 
@@ -67,7 +70,7 @@ std::array<T, 4> sample_level(const Texture::Storage& s, const Sampler& sampler,
   const T xs = x - T(0.5), ys = y - T(0.5);
   const int64_t i0 = floor_index(xs), j0 = floor_index(ys);
   // The fractions, from positions clamped as floor_index clamps them.
-  constexpr T kLimit = T(1 << 30);
+  constexpr T kLimit = T(kPositionLimit);
   const T a = std::clamp(xs, -kLimit, kLimit) - T(i0), b = std::clamp(ys, -kLimit, kLimit) - T(j0);
   const auto t00 = fetch<T>(s, sampler, level, i0, j0),
              t10 = fetch<T>(s, sampler, level, i0 + 1, j0);

@@ -1,5 +1,5 @@
 // A texture's storage and texel decoding (tessera/texture.hpp), shared by the sampler
-// (sampling.hpp) in float and in double, and by the SIMD sampler (sample_batch-inl.h).
+// (sampling.hpp) in float and in double, and by the SIMD sampler (sample_lanes-inl.h).
 #pragma once
 
 #include <array>
