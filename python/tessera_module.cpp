@@ -380,12 +380,13 @@ PYBIND11_MODULE(tessera, m) {
       m, "Sampler",
       "How a texture is sampled: filters (\"nearest\", \"linear\"), mip_filter (\"none\", "
       "\"nearest\", \"linear\"), wraps (\"repeat\", \"clamp_to_edge\", \"mirrored_repeat\", "
-      "\"clamp_to_border\"), border_color, lod_bias, min_lod, max_lod.");
+      "\"clamp_to_border\"), border_color, lod_bias, min_lod, max_lod, max_anisotropy (1 to 16).");
   sampler.def(py::init(&from_kwargs<tessera::Sampler>))
       .def_readwrite("border_color", &tessera::Sampler::border_color)
       .def_readwrite("lod_bias", &tessera::Sampler::lod_bias)
       .def_readwrite("min_lod", &tessera::Sampler::min_lod)
-      .def_readwrite("max_lod", &tessera::Sampler::max_lod);
+      .def_readwrite("max_lod", &tessera::Sampler::max_lod)
+      .def_readwrite("max_anisotropy", &tessera::Sampler::max_anisotropy);
   def_enum<tessera::Filter>(sampler, "mag_filter", &tessera::Sampler::mag_filter, kFilterNames);
   def_enum<tessera::Filter>(sampler, "min_filter", &tessera::Sampler::min_filter, kFilterNames);
   def_enum<tessera::MipFilter>(sampler, "mip_filter", &tessera::Sampler::mip_filter,

@@ -63,6 +63,7 @@ struct Options {
   std::string filter = "bilinear";
   std::string wrap = "repeat";
   std::vector<float> border_color{0, 0, 0, 0};
+  uint32_t anisotropy = 1;
 };
 
 // An extra render target written from the same pass as the colour (--aov kind=path).
@@ -356,6 +357,7 @@ void apply_shading(const Options& o, bool is_capture, Job& job, tessera::Pipelin
                                       : o.wrap == "border" ? tessera::Wrap::kClampToBorder
                                                            : tessera::Wrap::kRepeat;
     std::copy_n(o.border_color.begin(), 4, sampler.border_color.begin());
+    sampler.max_anisotropy = static_cast<float>(o.anisotropy);
     pipeline.texture = std::make_shared<tessera::Texture>(
         tessera::load_texture(o.texture, false, o.filter == "trilinear"));
   } else if (s == "normals") {
@@ -701,6 +703,10 @@ int main(int argc, char** argv) {
                  "--shading textured --wrap border: the border colour r,g,b,a (default 0,0,0,0)")
       ->delimiter(',')
       ->expected(4);
+  app.add_option("--anisotropy", o.anisotropy,
+                 "--shading textured: the most samples of anisotropic filtering (1: off)")
+      ->check(CLI::Range(1u, tessera::kMaxAnisotropy))
+      ->capture_default_str();
   app.add_option("--light", o.lights,
                  "--shading phong: a point light at x,y,z (eye space for captures, world space "
                  "for meshes); repeatable, up to 8")

@@ -497,7 +497,7 @@ static void check_textures(tessera_backend backend) {
   CHECK(pipeline.sampler.mag_filter == TESSERA_FILTER_LINEAR &&
         pipeline.sampler.mip_filter == TESSERA_MIP_FILTER_LINEAR &&
         pipeline.sampler.wrap_u == TESSERA_WRAP_REPEAT && pipeline.texture == NULL &&
-        pipeline.roles.texcoord == 10);
+        pipeline.roles.texcoord == 10 && pipeline.sampler.max_anisotropy == 1.0f);
   pipeline.shader = TESSERA_SHADER_TEXTURED;
   pipeline.roles.texcoord = 0;
   EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input),
@@ -512,6 +512,15 @@ static void check_textures(tessera_backend backend) {
     CHECK(memcmp(rgba, texels, sizeof rgba) == 0);
     texels[0] ^= 0xFF;
   }
+  pipeline.sampler.max_anisotropy = 0.0f;
+  EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input),
+               TESSERA_ERROR_INVALID_ARGUMENT, "tessera_draw_triangles", "sampler.max_anisotropy");
+  pipeline.sampler.max_anisotropy = 16.0f; /* a one-to-one mapping: one sample, the same texels */
+  OK(tessera_draw_triangles(renderer, fb, &pipeline, &input));
+  OK(tessera_framebuffer_read_rgba8(fb, rgba, sizeof rgba));
+  texels[0] ^= 0xFF;
+  CHECK(memcmp(rgba, texels, sizeof rgba) == 0);
+  texels[0] ^= 0xFF;
   pipeline.sampler.wrap_v = (tessera_wrap)9;
   EXPECT_ERROR(tessera_draw_triangles(renderer, fb, &pipeline, &input),
                TESSERA_ERROR_INVALID_ARGUMENT, "tessera_draw_triangles", "sampler.wrap_v");

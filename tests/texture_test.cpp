@@ -222,6 +222,112 @@ TEST(Texture, TheFloatSamplerMatchesTheDoubleReference) {
   EXPECT_LT(near_edges, checked / 100);
 }
 
+// One-texel stripes across v (white rows at even y, black at odd) under a footprint 8 texels
+// long in u (or, transposed, in v) and 1 texel across: the isotropic LOD, log2 8 = 3, reads a
+// level where the stripes have averaged to grey; 8 anisotropic samples read level 0, where the
+// point on a white row's centre stays white. Fewer allowed samples give lambda = log2(8 / N):
+// grey down to level 1. More than the footprint's ratio take only 8 (ceil(8 / 1)).
+TEST(Texture, AnisotropicFilteringSamplesAlongTheLongerAxisAtTheShorterAxissLevel) {
+  for (bool transposed : {false, true}) {
+    std::vector<uint8_t> p;
+    for (uint32_t y = 0; y < 64; ++y) {
+      for (uint32_t x = 0; x < 64; ++x) {
+        const uint8_t c = ((transposed ? x : y) % 2 == 0) ? 255 : 0;
+        p.insert(p.end(), {c, c, c, 255});
+      }
+    }
+    const Texture t({64, 64, TextureFormat::kRGBA8}, bytes_of(p), true);
+    Sampler s;  // trilinear, repeat
+    // (u, v) on white texel (21, 10)'s centre; 8 texels per pixel step along the stripes.
+    float u = 21.5f / 64, v = 10.5f / 64;
+    float du_dx = 8.0f / 64, dv_dx = 0, du_dy = 0, dv_dy = 1.0f / 64;
+    if (transposed) {
+      std::swap(u, v);
+      std::swap(du_dx, dv_dx);
+      std::swap(du_dy, dv_dy);
+    }
+    const auto red = [&](float max_anisotropy) {
+      s.max_anisotropy = max_anisotropy;
+      return sample(t, s, u, v, du_dx, dv_dx, du_dy, dv_dy)[0];
+    };
+    const float grey = 128.0f / 255;              // 8-bit means round 127.5 up
+    EXPECT_FLOAT_EQ(red(1), grey) << transposed;  // level 3
+    EXPECT_FLOAT_EQ(red(2), grey) << transposed;  // level 2
+    EXPECT_FLOAT_EQ(red(4), grey) << transposed;  // level 1
+    EXPECT_FLOAT_EQ(red(8), 1.0f) << transposed;  // level 0, every sample on the white row
+    EXPECT_FLOAT_EQ(red(8.9f), 1.0f) << transposed;
+    EXPECT_FLOAT_EQ(red(16), 1.0f) << transposed;
+    // max_anisotropy 1 is the isotropic sample at texture_lod.
+    s.max_anisotropy = 1;
+    EXPECT_EQ(sample(t, s, u, v, du_dx, dv_dx, du_dy, dv_dy),
+              sample(t, s, u, v, texture_lod(t, s, du_dx, dv_dx, du_dy, dv_dy)));
+  }
+  // The samples spread along the longer axis: across a black/white edge in u (level 0 only,
+  // nearest), 4 samples at offsets -0.3, -0.1, 0.1, 0.3 of 10 texels: two on each side.
+  std::vector<uint8_t> half;
+  for (uint32_t y = 0; y < 16; ++y) {
+    for (uint32_t x = 0; x < 64; ++x) {
+      const uint8_t c = x < 32 ? 0 : 255;
+      half.insert(half.end(), {c, c, c, 255});
+    }
+  }
+  const Texture edge({64, 16, TextureFormat::kRGBA8}, bytes_of(half), false);
+  Sampler s;
+  s.mag_filter = s.min_filter = Filter::kNearest;
+  s.mip_filter = MipFilter::kNone;
+  s.max_anisotropy = 4;
+  EXPECT_FLOAT_EQ(sample(edge, s, 32.0f / 64, 0.5f, 10.0f / 64, 0, 0, 2.5f / 16)[0], 0.5f);
+  EXPECT_FLOAT_EQ(sample(edge, s, 34.5f / 64, 0.5f, 10.0f / 64, 0, 0, 2.5f / 16)[0], 0.75f);
+}
+
+// The anisotropic float sampler against the double reference: random footprints stretched up to
+// 40:1 in any direction, linear filters (within 1e-4) and nearest ones (the same texel but where
+// a sample point lies near a texel edge or the LOD near a level switch: counted, rare).
+TEST(Texture, TheAnisotropicFloatSamplerMatchesTheDoubleReference) {
+  std::mt19937 rng(17);
+  std::vector<uint8_t> p(64 * 32 * 4);
+  for (uint8_t& b : p)
+    b = static_cast<uint8_t>(rng());
+  const Texture t({64, 32, TextureFormat::kRGBA8}, bytes_of(p), true);
+  std::uniform_real_distribution<float> coord(-2.0f, 3.0f), scale(-5.0f, 5.0f), ratio(0.0f, 5.3f),
+      angle(0.0f, 6.2831853f);
+  int differing = 0, checked = 0;
+  for (Filter filter : {Filter::kNearest, Filter::kLinear}) {
+    for (MipFilter mip : {MipFilter::kNone, MipFilter::kNearest, MipFilter::kLinear}) {
+      for (float max_anisotropy : {2.0f, 5.5f, 16.0f}) {
+        Sampler s;
+        s.mag_filter = s.min_filter = filter;
+        s.mip_filter = mip;
+        s.wrap_u = Wrap::kRepeat;
+        s.wrap_v = Wrap::kClampToBorder;
+        s.border_color = {0.1f, 0.2f, 0.3f, 0.4f};
+        s.max_anisotropy = max_anisotropy;
+        for (int k = 0; k < 1000; ++k) {
+          const float u = coord(rng), v = coord(rng);
+          // Axes of lengths l and l / 2^r texels at angle a and a + 90 degrees.
+          const float l = std::exp2(scale(rng)), r = std::exp2(-ratio(rng)), a = angle(rng);
+          const float du_dx = l * std::cos(a) / 64, dv_dx = l * std::sin(a) / 32;
+          const float du_dy = -l * r * std::sin(a) / 64, dv_dy = l * r * std::cos(a) / 32;
+          const auto got = sample(t, s, u, v, du_dx, dv_dx, du_dy, dv_dy);
+          const auto want = reference::sample(t, s, u, v, du_dx, dv_dx, du_dy, dv_dy);
+          ++checked;
+          float worst = 0;
+          for (int c = 0; c < 4; ++c)
+            worst = std::max(worst, static_cast<float>(std::abs(got[c] - want[c])));
+          if (filter == Filter::kLinear && mip != MipFilter::kNearest) {
+            ASSERT_LE(worst, 1e-4f) << "mip " << int(mip) << ", anisotropy " << max_anisotropy
+                                    << " at (" << u << ", " << v << ")";
+          } else {
+            differing += worst > 1e-4f;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_LT(differing, checked / 100);
+  std::printf("%d of %d nearest samples differ from the reference\n", differing, checked);
+}
+
 TEST(Texture, TheBatchSamplerGivesTheScalarSamplersBitsOnEveryTarget) {
   // Power-of-two RGBA8 and sRGB textures (sampled in lanes), a non-power-of-two one (in lanes
   // when clamped, fragment by fragment when repeated or mirrored) and a float one (fragment by
@@ -340,6 +446,19 @@ TEST(Texture, NanInfiniteAndHugeCoordinatesHaveDefinedResults) {
     }
   }
   EXPECT_EQ(texture_lod(t, s, inf, 0, 0, 0), s.max_lod);
+  // Anisotropic footprints with NaN or infinite derivatives, or none: in range.
+  s = {};
+  s.max_anisotropy = 16;
+  for (const auto& d : {std::array<float, 4>{nan, 0, 0, 0},
+                        {inf, 0.1f, 0, 0},
+                        {0, 0, 0, 0},
+                        {0.5f, 0, 0, 0},
+                        {inf, inf, inf, inf},
+                        {nan, nan, 0.5f, 0}}) {
+    for (float c : sample(t, s, 0.3f, 0.6f, d[0], d[1], d[2], d[3])) {
+      EXPECT_TRUE(c >= 0.0f && c <= 1.0f) << d[0] << " " << d[1] << " " << d[2] << " " << d[3];
+    }
+  }
   // A million texels out, exactly representable: u w = 1000000.5 is texel 1000000 = 0 mod 4.
   s = {};
   s.mag_filter = Filter::kNearest;

@@ -95,6 +95,12 @@ std::vector<Case> cases() {
   biased.lod_bias = 1.5f;
   biased.max_lod = 3.0f;
   out.push_back({"trilinear, LOD bias 1.5, max LOD 3", biased});
+  Sampler anisotropic = out[3].sampler;
+  anisotropic.max_anisotropy = 8;
+  out.push_back({"trilinear, anisotropic 8, repeat", anisotropic});
+  anisotropic = out[5].sampler;
+  anisotropic.max_anisotropy = 16;
+  out.push_back({"trilinear, anisotropic 16, clamp to border", anisotropic});
   return out;
 }
 
@@ -322,6 +328,11 @@ TEST(TexturedShader, BadStatesAreErrorsThatDrawNothing) {
     p = textured(Sampler{});
     p.sampler.lod_bias = std::nanf("");
     draw_error(p, "lod_bias");
+    for (float bad : {0.5f, 17.0f, std::nanf("")}) {
+      p = textured(Sampler{});
+      p.sampler.max_anisotropy = bad;
+      draw_error(p, "max_anisotropy");
+    }
     p = textured(Sampler{});
     p.sampler.border_color[2] = INFINITY;
     draw_error(p, "border_color");

@@ -277,6 +277,7 @@ tessera::PipelineState to_cpp(const tessera_pipeline_state& c) {
   sampler.lod_bias = c.sampler.lod_bias;
   sampler.min_lod = c.sampler.min_lod;
   sampler.max_lod = c.sampler.max_lod;
+  sampler.max_anisotropy = c.sampler.max_anisotropy;
   tessera::PhongState& phong = p.phong;
   std::copy(c.phong.base_color, c.phong.base_color + 4, phong.base_color.begin());
   phong.ka = c.phong.ka;
@@ -349,6 +350,7 @@ tessera_pipeline_state to_c(const tessera::PipelineState& p) {
   c.sampler.lod_bias = p.sampler.lod_bias;
   c.sampler.min_lod = p.sampler.min_lod;
   c.sampler.max_lod = p.sampler.max_lod;
+  c.sampler.max_anisotropy = p.sampler.max_anisotropy;
   const tessera::PhongState& phong = p.phong;
   std::copy(phong.base_color.begin(), phong.base_color.end(), c.phong.base_color);
   c.phong.ka = phong.ka;

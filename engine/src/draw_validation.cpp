@@ -260,6 +260,11 @@ void validate_sampler(const Sampler& s) {
       fail(ErrorCode::kInvalidArgument, std::string("pipeline sampler.") + name + " is NaN");
     }
   }
+  if (!(s.max_anisotropy >= 1.0f && s.max_anisotropy <= float(kMaxAnisotropy))) {
+    fail(ErrorCode::kInvalidArgument, "pipeline sampler.max_anisotropy " +
+                                          std::to_string(s.max_anisotropy) + " is not in [1, " +
+                                          std::to_string(kMaxAnisotropy) + "]");
+  }
   if (!(s.min_lod <= s.max_lod)) {
     fail(ErrorCode::kInvalidArgument, "pipeline sampler.min_lod " + std::to_string(s.min_lod) +
                                           " is above max_lod " + std::to_string(s.max_lod));

@@ -85,3 +85,6 @@ def test_bad_textures_samplers_and_states_are_errors():
     pipeline.sampler = tessera.Sampler(min_lod=3, max_lod=1)
     with pytest.raises(ValueError, match="min_lod"):
         tessera.Renderer().draw(tessera.Framebuffer(8, 8), positions, uv, indices, pipeline=pipeline)
+    pipeline.sampler = tessera.Sampler(max_anisotropy=32)
+    with pytest.raises(ValueError, match="max_anisotropy"):
+        tessera.Renderer().draw(tessera.Framebuffer(8, 8), positions, uv, indices, pipeline=pipeline)

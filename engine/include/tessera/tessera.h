@@ -369,6 +369,7 @@ typedef struct tessera_sampler {
   float border_color[4]; /* TESSERA_WRAP_CLAMP_TO_BORDER */
   float lod_bias;
   float min_lod, max_lod;
+  float max_anisotropy; /* 1 (off) to 16 */
 } tessera_sampler;
 
 /* A texture (tessera::Texture): the caller's texels copied (width * height texels, top row

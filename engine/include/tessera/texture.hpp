@@ -30,6 +30,7 @@ enum class TextureFormat : uint8_t {
 };
 
 inline constexpr uint32_t kMaxTextureSize = 16384;
+inline constexpr uint32_t kMaxAnisotropy = 16;  // Sampler::max_anisotropy's largest value
 
 // Bytes of one texel of `format`.
 TESSERA_API uint32_t texel_bytes(TextureFormat format);
@@ -94,6 +95,9 @@ struct Sampler {
   std::array<float, 4> border_color{0, 0, 0, 0};  // Wrap::kClampToBorder
   float lod_bias = 0;                             // added to log2 of the scale factor
   float min_lod = -1000, max_lod = 1000;          // the LOD is clamped to [min_lod, max_lod]
+  // Anisotropic filtering: up to floor(max_anisotropy) samples along a stretched footprint
+  // (sample_footprint); 1 (the default) turns it off. 1 to kMaxAnisotropy.
+  float max_anisotropy = 1;
 };
 
 // The level of detail at a fragment from the derivatives of (u, v) per pixel step (OpenGL 4.6
@@ -114,8 +118,20 @@ TESSERA_API float texture_lod(const Texture& texture, const Sampler& sampler, fl
 TESSERA_API std::array<float, 4> sample(const Texture& texture, const Sampler& sampler, float u,
                                         float v, float lod);
 
+// The filtered, linear RGBA at (u, v) over the footprint that the derivatives of (u, v) per
+// pixel step give, as the built-in textured shader and the batch form below sample: with
+// max_anisotropy 1, sample() at texture_lod(); above 1, anisotropic (EXT_texture_filter_
+// anisotropic's formulation, core in OpenGL 4.6): with px and py the two axes' lengths in
+// level-0 texels (texture_lod's), N = min(ceil(max(px, py) / min(px, py)),
+// floor(max_anisotropy)) samples (1 for an empty or NaN footprint), each sample() at lambda =
+// log2(max(px, py) / N) + lod_bias (clamped), at (u, v) plus i / (N + 1) - 1/2 steps along the
+// longer axis for i = 1..N, averaged.
+TESSERA_API std::array<float, 4> sample(const Texture& texture, const Sampler& sampler, float u,
+                                        float v, float du_dx, float dv_dx, float du_dy,
+                                        float dv_dy);
+
 // sample() at every fragment of a user shader's batch, with (u, v) = varyings `u_varying` and
-// `v_varying` and the LOD from their derivatives (texture_lod), into rgba[c *
+// `v_varying` over the footprint their derivatives give (the derivatives' sample()), into rgba[c *
 // kFragmentBatchStride + i] for channel c of fragment i.
 TESSERA_API void sample(const Texture& texture, const Sampler& sampler, const FragmentBatch& batch,
                         uint32_t u_varying, uint32_t v_varying, float* rgba);

@@ -242,14 +242,12 @@ std::array<float, 4> shade(const PipelineState& pipeline, TargetOutput output,
                  base);
   }
   if (pipeline.shader == FragmentShader::kTextured) {
-    // The texel (LOD from the quad's derivatives) times the colour varyings, or white.
+    // The texel (over the footprint of the quad's derivatives) times the colour varyings, or
+    // white.
     const uint32_t t = pipeline.roles.texcoord;
-    const Texture& texture = *pipeline.texture;
-    const double lod = reference::texture_lod(texture, pipeline.sampler, derivatives->ddx[t],
-                                              derivatives->ddx[t + 1], derivatives->ddy[t],
-                                              derivatives->ddy[t + 1]);
-    const std::array<double, 4> texel =
-        reference::sample(texture, pipeline.sampler, value[t], value[t + 1], lod);
+    const std::array<double, 4> texel = reference::sample(
+        *pipeline.texture, pipeline.sampler, value[t], value[t + 1], derivatives->ddx[t],
+        derivatives->ddx[t + 1], derivatives->ddy[t], derivatives->ddy[t + 1]);
     std::array<float, 4> out;
     for (int c = 0; c < 4; ++c)
       out[c] = static_cast<float>(texel[c] * (has_color ? value[color + c] : 1.0));

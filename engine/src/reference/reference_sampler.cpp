@@ -16,4 +16,10 @@ std::array<double, 4> sample(const Texture& texture, const Sampler& sampler, dou
   return texture::sample<double>(detail::TextureAccess::storage(texture), sampler, u, v, lod);
 }
 
+std::array<double, 4> sample(const Texture& texture, const Sampler& sampler, double u, double v,
+                             double du_dx, double dv_dx, double du_dy, double dv_dy) {
+  return texture::sample_footprint<double>(detail::TextureAccess::storage(texture), sampler, u, v,
+                                           du_dx, dv_dx, du_dy, dv_dy);
+}
+
 }  // namespace tessera::reference

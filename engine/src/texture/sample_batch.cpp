@@ -30,9 +30,8 @@ void SampleBatch(const Texture::Storage& s, const Sampler& sampler, const LaneTe
   const uint32_t count = std::min(in.count, kStride);
   if (src == nullptr) {
     for (uint32_t i = 0; i < count; ++i) {
-      const float lambda =
-          lod<float>(s, sampler, in.du_dx[i], in.dv_dx[i], in.du_dy[i], in.dv_dy[i]);
-      const std::array<float, 4> c = sample<float>(s, sampler, in.u[i], in.v[i], lambda);
+      const std::array<float, 4> c = sample_footprint<float>(
+          s, sampler, in.u[i], in.v[i], in.du_dx[i], in.dv_dx[i], in.du_dy[i], in.dv_dy[i]);
       for (uint32_t k = 0; k < 4; ++k)
         rgba[k * kStride + i] = c[k];
     }
@@ -81,7 +80,7 @@ bool lanes_apply(const Texture::Storage& s, const Sampler& sampler, LaneTexture&
     return (wrap != Wrap::kRepeat && wrap != Wrap::kMirroredRepeat) || std::has_single_bit(n);
   };
   if (s.levels.size() > LaneTexture::kMaxLevels || !side_ok(sampler.wrap_u, s.desc.width) ||
-      !side_ok(sampler.wrap_v, s.desc.height)) {
+      !side_ok(sampler.wrap_v, s.desc.height) || anisotropy_limit(sampler) > 1) {
     return false;
   }
   out.storage = &s;

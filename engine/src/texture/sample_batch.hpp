@@ -24,8 +24,8 @@ struct LaneTexture {
 };
 
 // Whether the lanes sample `storage` with `sampler`: RGBA8 and sRGB textures, except with
-// repeat or mirrored wrapping on a side that is not a power of two. When they do, fills `out`
-// (which refers to `storage` from then on).
+// repeat or mirrored wrapping on a side that is not a power of two, or anisotropic filtering. When
+// they do, fills `out` (which refers to `storage` from then on).
 bool lanes_apply(const Texture::Storage& storage, const Sampler& sampler, LaneTexture& out);
 
 // A batch's texture coordinates and their derivatives per pixel step, `count` (at most
@@ -55,12 +55,11 @@ inline BatchCoordinates coordinates_of(const FragmentBatch& batch, uint32_t u_va
           batch.count};
 }
 
-// sample() (sampling.hpp, in float) at every fragment of the batch, with the level of detail
-// from its derivatives (lod()), into rgba[c * kFragmentBatchStride + i] for channel c of
-// fragment i < count: the same bits as the scalar sampler, on the SIMD target `target` (a
-// Highway target bit, as simd::resolve_target gives; one this build lacks runs the portable
-// baseline): in lanes with `lanes` (what lanes_apply filled for this texture and sampler),
-// fragment by fragment without (null).
+// sample_footprint() (sampling.hpp, in float) at every fragment of the batch, into rgba[c *
+// kFragmentBatchStride + i] for channel c of fragment i < count: the same bits as the scalar
+// sampler, on the SIMD target `target` (a Highway target bit, as simd::resolve_target gives; one
+// this build lacks runs the portable baseline): in lanes with `lanes` (what lanes_apply filled for
+// this texture and sampler), fragment by fragment without (null).
 void sample_batch(int64_t target, const Texture::Storage& storage, const Sampler& sampler,
                   const LaneTexture* lanes, const BatchCoordinates& in, float* rgba);
 

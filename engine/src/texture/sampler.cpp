@@ -17,6 +17,12 @@ std::array<float, 4> sample(const Texture& texture, const Sampler& sampler, floa
   return texture::sample<float>(detail::TextureAccess::storage(texture), sampler, u, v, lod);
 }
 
+std::array<float, 4> sample(const Texture& texture, const Sampler& sampler, float u, float v,
+                            float du_dx, float dv_dx, float du_dy, float dv_dy) {
+  return texture::sample_footprint<float>(detail::TextureAccess::storage(texture), sampler, u, v,
+                                          du_dx, dv_dx, du_dy, dv_dy);
+}
+
 void sample(const Texture& texture, const Sampler& sampler, const FragmentBatch& batch,
             uint32_t u_varying, uint32_t v_varying, float* rgba) {
   // The automatic SIMD target (TESSERA_SIMD's when set): every target gives the same bits, so

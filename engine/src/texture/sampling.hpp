@@ -94,12 +94,25 @@ T lod_of_rho(const Sampler& sampler, T rho) {
   return std::clamp(lambda, T(sampler.min_lod), T(sampler.max_lod));
 }
 
+// The lengths in level-0 texels of the footprint's two screen axes: |(du/dx w, dv/dx h)| and
+// |(du/dy w, dv/dy h)|.
+template <class T>
+std::array<T, 2> axis_lengths(const Texture::Storage& s, T du_dx, T dv_dx, T du_dy, T dv_dy) {
+  const T w = T(s.desc.width), h = T(s.desc.height);
+  return {std::sqrt(du_dx * w * (du_dx * w) + dv_dx * h * (dv_dx * h)),
+          std::sqrt(du_dy * w * (du_dy * w) + dv_dy * h * (dv_dy * h))};
+}
+
 template <class T>
 T lod(const Texture::Storage& s, const Sampler& sampler, T du_dx, T dv_dx, T du_dy, T dv_dy) {
-  const T w = T(s.desc.width), h = T(s.desc.height);
-  const T x = std::sqrt(du_dx * w * (du_dx * w) + dv_dx * h * (dv_dx * h));
-  const T y = std::sqrt(du_dy * w * (du_dy * w) + dv_dy * h * (dv_dy * h));
+  const auto [x, y] = axis_lengths<T>(s, du_dx, dv_dx, du_dy, dv_dy);
   return lod_of_rho<T>(sampler, std::max(x, y));
+}
+
+// The most samples an anisotropic footprint takes: floor(max_anisotropy) in [1, 16].
+inline uint32_t anisotropy_limit(const Sampler& sampler) {
+  const float n = sampler.max_anisotropy;
+  return n >= float(kMaxAnisotropy) ? kMaxAnisotropy : n >= 1.0f ? static_cast<uint32_t>(n) : 1u;
 }
 
 // The level(s) a sample at level of detail `lambda` reads, with which filter: `first` alone,
@@ -146,6 +159,38 @@ std::array<T, 4> sample(const Texture::Storage& s, const Sampler& sampler, T u, 
   for (int k = 0; k < 4; ++k)
     out[k] = a[k] + c.weight * (b[k] - a[k]);
   return out;
+}
+
+// sample() with the level of detail from the footprint, anisotropic when the sampler allows
+// more than one sample (EXT_texture_filter_anisotropic's formulation, core in OpenGL 4.6): with
+// the axis lengths px and py, N = min(ceil(max / min), anisotropy_limit()) samples (1 when
+// the footprint is empty or NaN) at lambda = log2(max / N) + bias, clamped, spaced along the
+// longer axis at offsets i / (N + 1) - 1/2 pixel steps for i = 1..N, and averaged.
+template <class T>
+std::array<T, 4> sample_footprint(const Texture::Storage& s, const Sampler& sampler, T u, T v,
+                                  T du_dx, T dv_dx, T du_dy, T dv_dy) {
+  const auto [px, py] = axis_lengths<T>(s, du_dx, dv_dx, du_dy, dv_dy);
+  const T longer = std::max(px, py), shorter = std::min(px, py);
+  const uint32_t limit = anisotropy_limit(sampler);
+  uint32_t n = 1;
+  if (limit > 1 && longer > T(0)) {
+    const T ratio = std::ceil(longer / shorter);  // +inf for an empty shorter axis
+    n = ratio >= T(limit) ? limit : ratio >= T(1) ? static_cast<uint32_t>(ratio) : 1u;
+  }
+  const T lambda = lod_of_rho<T>(sampler, longer / T(n));
+  if (n == 1) return sample<T>(s, sampler, u, v, lambda);
+  const bool along_x = px > py;
+  const T step_u = along_x ? du_dx : du_dy, step_v = along_x ? dv_dx : dv_dy;
+  std::array<T, 4> sum{};
+  for (uint32_t i = 1; i <= n; ++i) {
+    const T t = T(i) / T(n + 1) - T(0.5);
+    const auto c = sample<T>(s, sampler, u + t * step_u, v + t * step_v, lambda);
+    for (int k = 0; k < 4; ++k)
+      sum[k] += c[k];
+  }
+  for (int k = 0; k < 4; ++k)
+    sum[k] /= T(n);
+  return sum;
 }
 
 }  // namespace tessera::texture
