@@ -331,8 +331,10 @@ TEST(Texture, TheAnisotropicFloatSamplerMatchesTheDoubleReference) {
 TEST(Texture, TheBatchSamplerGivesTheScalarSamplersBitsOnEveryTarget) {
   // Power-of-two RGBA8 and sRGB textures (sampled in lanes), a non-power-of-two one (in lanes
   // when clamped, fragment by fragment when repeated or mirrored) and a float one (fragment by
-  // fragment); batches of quads sharing derivatives from magnified to past the chain, with
-  // NaN, infinite and huge coordinates among them; every filter pairing, mip filter and wrap.
+  // fragment); batches of quads sharing derivatives from magnified to past the chain, stretched
+  // up to 45:1 in any direction (some empty, infinite or NaN), with NaN, infinite and huge
+  // coordinates among them; every filter pairing, mip filter and wrap, isotropic and with up to
+  // 3 and 16 anisotropic samples.
   std::mt19937 rng(11);
   const auto noise = [&](size_t n) {
     std::vector<uint8_t> p(n);
@@ -349,7 +351,8 @@ TEST(Texture, TheBatchSamplerGivesTheScalarSamplersBitsOnEveryTarget) {
       Texture({37, 23, TextureFormat::kRGBA8}, bytes_of(noise(37 * 23 * 4)), true),
       Texture({16, 8, TextureFormat::kRGBA32F}, bytes_of(f), true)};
   constexpr uint32_t kStride = kFragmentBatchStride;
-  std::uniform_real_distribution<float> coord(-3.0f, 4.0f), scale(-7.0f, 7.0f);
+  std::uniform_real_distribution<float> coord(-3.0f, 4.0f), scale(-7.0f, 7.0f), ratio(0.0f, 5.5f),
+      angle(0.0f, 6.2831853f);
   const float specials[] = {std::numeric_limits<float>::quiet_NaN(),
                             std::numeric_limits<float>::infinity(),
                             -std::numeric_limits<float>::infinity(),
@@ -364,9 +367,16 @@ TEST(Texture, TheBatchSamplerGivesTheScalarSamplersBitsOnEveryTarget) {
           std::pair{Filter::kLinear, Filter::kLinear}, std::pair{Filter::kNearest, Filter::kLinear},
           std::pair{Filter::kLinear, Filter::kNearest}}) {
       for (MipFilter mip : {MipFilter::kNone, MipFilter::kNearest, MipFilter::kLinear}) {
-        for (Wrap wrap :
-             {Wrap::kRepeat, Wrap::kClampToEdge, Wrap::kMirroredRepeat, Wrap::kClampToBorder}) {
+        for (const auto& [wrap, max_anisotropy] : {std::pair{Wrap::kRepeat, 1.0f},
+                                                   {Wrap::kClampToEdge, 1.0f},
+                                                   {Wrap::kMirroredRepeat, 1.0f},
+                                                   {Wrap::kClampToBorder, 1.0f},
+                                                   {Wrap::kRepeat, 3.0f},
+                                                   {Wrap::kClampToBorder, 3.0f},
+                                                   {Wrap::kMirroredRepeat, 16.0f},
+                                                   {Wrap::kClampToEdge, 16.0f}}) {
           Sampler s;
+          s.max_anisotropy = max_anisotropy;
           s.mag_filter = mag;
           s.min_filter = min;
           s.mip_filter = mip;
@@ -379,14 +389,18 @@ TEST(Texture, TheBatchSamplerGivesTheScalarSamplersBitsOnEveryTarget) {
             a.resize(kStride);
           const uint32_t count = 1 + static_cast<uint32_t>(rng() % kStride);
           for (uint32_t i = 0; i < kStride; i += 4) {
-            const float d = std::exp2(scale(rng)) / 37.0f;
+            // Axes of d and d / 2^ratio texels-ish at angle a and a + 90 degrees.
+            const float d = std::exp2(scale(rng)) / 37.0f, r = std::exp2(-ratio(rng)),
+                        a = angle(rng);
+            std::array<float, 4> deriv = {d * std::cos(a), d * std::sin(a), -d * r * std::sin(a),
+                                          d * r * std::cos(a)};
+            if (rng() % 16 == 0) deriv[rng() % 4] = specials[rng() % 3];
+            if (rng() % 32 == 0) deriv = {0, 0, 0, 0};
             for (uint32_t k = i; k < i + 4; ++k) {
               in[0][k] = rng() % 16 == 0 ? specials[rng() % 6] : coord(rng);
               in[1][k] = rng() % 16 == 0 ? specials[rng() % 6] : coord(rng);
-              in[2][k] = d;
-              in[3][k] = 0.3f * d;
-              in[4][k] = -0.2f * d;
-              in[5][k] = d;
+              for (uint32_t c = 0; c < 4; ++c)
+                in[2 + c][k] = deriv[c];
             }
           }
           const texture::BatchCoordinates batch{in[0].data(), in[1].data(), in[2].data(),
@@ -401,8 +415,8 @@ TEST(Texture, TheBatchSamplerGivesTheScalarSamplersBitsOnEveryTarget) {
             texture::sample_batch(target, storage, s, in_lanes ? &lanes : nullptr, batch,
                                   rgba.data());
             for (uint32_t i = 0; i < kStride; ++i) {
-              const float lod = texture_lod(t, s, in[2][i], in[3][i], in[4][i], in[5][i]);
-              const std::array<float, 4> want = sample(t, s, in[0][i], in[1][i], lod);
+              const std::array<float, 4> want =
+                  sample(t, s, in[0][i], in[1][i], in[2][i], in[3][i], in[4][i], in[5][i]);
               for (uint32_t c = 0; c < 4; ++c) {
                 const float got = rgba[c * kStride + i];
                 if (i >= count) {
@@ -412,9 +426,10 @@ TEST(Texture, TheBatchSamplerGivesTheScalarSamplersBitsOnEveryTarget) {
                 ASSERT_EQ(std::memcmp(&got, &want[c], sizeof got), 0)
                     << simd::target_name(target) << ": format " << int(t.desc().format)
                     << ", filters " << int(mag) << "/" << int(min) << ", mip " << int(mip)
-                    << ", wrap " << int(wrap) << ", fragment " << i << " at (" << in[0][i] << ", "
-                    << in[1][i] << ") lod " << lod << ", channel " << c << ": " << got
-                    << " against " << want[c];
+                    << ", wrap " << int(wrap) << ", anisotropy " << max_anisotropy << ", fragment "
+                    << i << " at (" << in[0][i] << ", " << in[1][i] << ") derivatives " << in[2][i]
+                    << " " << in[3][i] << " " << in[4][i] << " " << in[5][i] << ", channel " << c
+                    << ": " << got << " against " << want[c];
               }
             }
           }
@@ -423,7 +438,7 @@ TEST(Texture, TheBatchSamplerGivesTheScalarSamplersBitsOnEveryTarget) {
       }
     }
   }
-  EXPECT_EQ(batches, 4 * 4 * 3 * 4);
+  EXPECT_EQ(batches, 4 * 4 * 3 * 8);
 }
 
 TEST(Texture, NanInfiniteAndHugeCoordinatesHaveDefinedResults) {

@@ -80,7 +80,7 @@ bool lanes_apply(const Texture::Storage& s, const Sampler& sampler, LaneTexture&
     return (wrap != Wrap::kRepeat && wrap != Wrap::kMirroredRepeat) || std::has_single_bit(n);
   };
   if (s.levels.size() > LaneTexture::kMaxLevels || !side_ok(sampler.wrap_u, s.desc.width) ||
-      !side_ok(sampler.wrap_v, s.desc.height) || anisotropy_limit(sampler) > 1) {
+      !side_ok(sampler.wrap_v, s.desc.height)) {
     return false;
   }
   out.storage = &s;

@@ -24,7 +24,7 @@ struct LaneTexture {
 };
 
 // Whether the lanes sample `storage` with `sampler`: RGBA8 and sRGB textures, except with
-// repeat or mirrored wrapping on a side that is not a power of two, or anisotropic filtering. When
+// repeat or mirrored wrapping on a side that is not a power of two. When
 // they do, fills `out` (which refers to `storage` from then on).
 bool lanes_apply(const Texture::Storage& storage, const Sampler& sampler, LaneTexture& out);
 

@@ -166,22 +166,24 @@ HWY_INLINE void sample_level_mixed(DF df, const LaneTexture& src, VI level, int3
   select(hn::RebindMask(df, linear_lanes), r, g, b, a, r1, g1, b1, a1);
 }
 
-// The filtered, linear RGBA of each lane at (u, v) (NaN read as 0) with the level of detail
-// of its derivatives: sample() and lod() of sampling.hpp in lanes.
+// The filtered, linear RGBA of each lane over the footprint of its derivatives:
+// sample_footprint() of sampling.hpp in lanes.
 template <class DF, class VF = hn::Vec<DF>>
 HWY_INLINE void sample_lanes(DF df, const LaneTexture& src, VF u, VF v, VF du_dx, VF dv_dx,
                              VF du_dy, VF dv_dy, VF& r, VF& g, VF& b, VF& a) {
   const hn::RebindToSigned<DF> di;
   constexpr size_t kMaxLanes = HWY_MAX_BYTES / sizeof(float);
   const Texture::Storage& s = *src.storage;
-  u = hn::IfThenElseZero(hn::Eq(u, u), u);
-  v = hn::IfThenElseZero(hn::Eq(v, v), v);
   const Sampler& sampler = src.sampler;
-  if (sampler.mip_filter == MipFilter::kNone && sampler.mag_filter == sampler.min_filter) {
+  const uint32_t limit = anisotropy_limit(sampler);
+  const auto not_nan = [](VF x) { return hn::IfThenElseZero(hn::Eq(x, x), x); };
+  if (limit == 1 && sampler.mip_filter == MipFilter::kNone &&
+      sampler.mag_filter == sampler.min_filter) {
     // Level 0 with the one filter whatever the level of detail (choose_levels): no footprint.
     const bool linear = sampler.min_filter == Filter::kLinear;
     const auto lanes_linear = linear ? hn::FirstN(di, hn::Lanes(di)) : hn::FirstN(di, 0);
-    return sample_level_mixed(df, src, hn::Zero(di), 0, lanes_linear, u, v, r, g, b, a);
+    return sample_level_mixed(df, src, hn::Zero(di), 0, lanes_linear, not_nan(u), not_nan(v), r, g,
+                              b, a);
   }
   // The footprint in level-0 texels, as lod() computes it.
   const VF w = hn::Set(df, static_cast<float>(s.desc.width));
@@ -191,31 +193,38 @@ HWY_INLINE void sample_lanes(DF df, const LaneTexture& src, VF u, VF v, VF du_dx
     return hn::Sqrt(hn::Add(hn::Mul(a0, a0), hn::Mul(b0, b0)));
   };
   const VF x = length(du_dx, dv_dx), y = length(du_dy, dv_dy);
-  const VF rho = hn::IfThenElse(hn::Lt(x, y), y, x);  // std::max(x, y), also for NaN
-  alignas(64) float rhos[kMaxLanes], weight[kMaxLanes];
-  alignas(64) int32_t first[kMaxLanes], second[kMaxLanes], linear[kMaxLanes], blend[kMaxLanes];
-  hn::Store(rho, df, rhos);
+  alignas(64) float xs[kMaxLanes], ys[kMaxLanes], weight[kMaxLanes];
+  alignas(64) int32_t first[kMaxLanes], second[kMaxLanes], linear[kMaxLanes], blend[kMaxLanes],
+      count[kMaxLanes];
+  hn::Store(x, df, xs);
+  hn::Store(y, df, ys);
   const size_t lanes = hn::Lanes(df);
   // The choices of the last few distinct footprints: a lane group holds parts of a few quads
   // (a row of four on 16 lanes, then the row below), each with one footprint.
   constexpr uint32_t kMemo = 4;
-  float memo_rho[kMemo];
+  uint64_t memo_key[kMemo];
+  Anisotropy<float> memo_aniso[kMemo];
   LevelChoice<float> memo[kMemo];
-  uint32_t memo_count = 0, memo_next = 0;
+  uint32_t memo_count = 0, memo_next = 0, most = 1;
   int32_t same_first = -2, same_second = -2;  // -2: no lane yet; -1: lanes differ
   for (size_t i = 0; i < lanes; ++i) {
+    const uint64_t key =
+        uint64_t{std::bit_cast<uint32_t>(xs[i])} << 32 | std::bit_cast<uint32_t>(ys[i]);
     uint32_t k = 0;
-    while (k < memo_count &&
-           std::bit_cast<uint32_t>(memo_rho[k]) != std::bit_cast<uint32_t>(rhos[i]))
+    while (k < memo_count && memo_key[k] != key)
       ++k;
     if (k == memo_count) {
       k = memo_next;
       memo_next = (memo_next + 1) % kMemo;
       memo_count = std::min(memo_count + 1, kMemo);
-      memo_rho[k] = rhos[i];
-      memo[k] = choose_levels<float>(s, src.sampler, lod_of_rho<float>(src.sampler, rhos[i]));
+      memo_key[k] = key;
+      memo_aniso[k] = anisotropy<float>(limit, xs[i], ys[i]);
+      memo[k] =
+          choose_levels<float>(s, src.sampler, lod_of_rho<float>(src.sampler, memo_aniso[k].rho));
     }
     const LevelChoice<float>& choice = memo[k];
+    count[i] = static_cast<int32_t>(memo_aniso[k].count);
+    most = std::max(most, memo_aniso[k].count);
     first[i] = static_cast<int32_t>(choice.first);
     second[i] = static_cast<int32_t>(choice.second);
     weight[i] = choice.weight;
@@ -225,15 +234,50 @@ HWY_INLINE void sample_lanes(DF df, const LaneTexture& src, VF u, VF v, VF du_dx
     same_second = same_second == -2 || same_second == second[i] ? second[i] : -1;
   }
   const auto linear_lanes = hn::Ne(hn::Load(di, linear), hn::Zero(di));
-  sample_level_mixed(df, src, hn::Load(di, first), same_first, linear_lanes, u, v, r, g, b, a);
   const auto blend_lanes = hn::Ne(hn::Load(di, blend), hn::Zero(di));
-  if (hn::AllFalse(di, blend_lanes)) return;
-  VF r1, g1, b1, a1;
-  sample_level_mixed(df, src, hn::Load(di, second), same_second, linear_lanes, u, v, r1, g1, b1,
-                     a1);
-  VF rb = r, gb = g, bb = b, ab = a;
-  lerp(rb, gb, bb, ab, r1, g1, b1, a1, hn::Load(df, weight));
-  select(hn::RebindMask(df, blend_lanes), r, g, b, a, rb, gb, bb, ab);
+  // sample() at (su, sv) (not NaN) with each lane's level choice.
+  const auto sample_at = [&](VF su, VF sv, VF& r0, VF& g0, VF& b0, VF& a0) {
+    sample_level_mixed(df, src, hn::Load(di, first), same_first, linear_lanes, su, sv, r0, g0, b0,
+                       a0);
+    if (hn::AllFalse(di, blend_lanes)) return;
+    VF r1, g1, b1, a1;
+    sample_level_mixed(df, src, hn::Load(di, second), same_second, linear_lanes, su, sv, r1, g1, b1,
+                       a1);
+    VF rb = r0, gb = g0, bb = b0, ab = a0;
+    lerp(rb, gb, bb, ab, r1, g1, b1, a1, hn::Load(df, weight));
+    select(hn::RebindMask(df, blend_lanes), r0, g0, b0, a0, rb, gb, bb, ab);
+  };
+  if (most == 1) return sample_at(not_nan(u), not_nan(v), r, g, b, a);
+  // Anisotropic: sample i of each lane's n at offset i / (n + 1) - 1/2 along the longer axis
+  // (none where n is 1), summed in order where i <= n, then divided by n.
+  const auto n = hn::Load(di, count);
+  const auto one = hn::Set(di, 1);
+  const auto single = hn::RebindMask(df, hn::Eq(n, one));
+  const VF n_plus_1 = hn::ConvertTo(df, hn::Add(n, one));
+  const auto along_x = hn::Gt(x, y);
+  const VF step_u = hn::IfThenElse(along_x, du_dx, du_dy);
+  const VF step_v = hn::IfThenElse(along_x, dv_dx, dv_dy);
+  for (uint32_t i = 1; i <= most; ++i) {
+    const VF t = hn::Sub(hn::Div(hn::Set(df, static_cast<float>(i)), n_plus_1), hn::Set(df, 0.5f));
+    const VF su = hn::IfThenElse(single, u, hn::Add(u, hn::Mul(t, step_u)));
+    const VF sv = hn::IfThenElse(single, v, hn::Add(v, hn::Mul(t, step_v)));
+    if (i == 1) {
+      sample_at(not_nan(su), not_nan(sv), r, g, b, a);
+      continue;
+    }
+    VF ri, gi, bi, ai;
+    sample_at(not_nan(su), not_nan(sv), ri, gi, bi, ai);
+    const auto active = hn::RebindMask(df, hn::Lt(hn::Set(di, static_cast<int32_t>(i) - 1), n));
+    r = hn::IfThenElse(active, hn::Add(r, ri), r);
+    g = hn::IfThenElse(active, hn::Add(g, gi), g);
+    b = hn::IfThenElse(active, hn::Add(b, bi), b);
+    a = hn::IfThenElse(active, hn::Add(a, ai), a);
+  }
+  const VF nf = hn::ConvertTo(df, n);
+  r = hn::Div(r, nf);
+  g = hn::Div(g, nf);
+  b = hn::Div(b, nf);
+  a = hn::Div(a, nf);
 }
 
 }  // namespace tessera::texture::HWY_NAMESPACE

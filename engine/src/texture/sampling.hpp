@@ -161,32 +161,53 @@ std::array<T, 4> sample(const Texture::Storage& s, const Sampler& sampler, T u, 
   return out;
 }
 
-// sample() with the level of detail from the footprint, anisotropic when the sampler allows
-// more than one sample (EXT_texture_filter_anisotropic's formulation, core in OpenGL 4.6): with
-// the axis lengths px and py, N = min(ceil(max / min), anisotropy_limit()) samples (1 when
-// the footprint is empty or NaN) at lambda = log2(max / N) + bias, clamped, spaced along the
-// longer axis at offsets i / (N + 1) - 1/2 pixel steps for i = 1..N, and averaged.
+// The samples of a footprint with axis lengths px and py (axis_lengths()) and the scale factor
+// whose level of detail they read: EXT_texture_filter_anisotropic's N = min(ceil(max / min),
+// limit) (1 when the footprint is empty or NaN, or limit is 1) and max / N.
 template <class T>
-std::array<T, 4> sample_footprint(const Texture::Storage& s, const Sampler& sampler, T u, T v,
-                                  T du_dx, T dv_dx, T du_dy, T dv_dy) {
-  const auto [px, py] = axis_lengths<T>(s, du_dx, dv_dx, du_dy, dv_dy);
+struct Anisotropy {
+  uint32_t count = 1;
+  T rho = T(0);
+};
+
+template <class T>
+Anisotropy<T> anisotropy(uint32_t limit, T px, T py) {
   const T longer = std::max(px, py), shorter = std::min(px, py);
-  const uint32_t limit = anisotropy_limit(sampler);
   uint32_t n = 1;
   if (limit > 1 && longer > T(0)) {
     const T ratio = std::ceil(longer / shorter);  // +inf for an empty shorter axis
     n = ratio >= T(limit) ? limit : ratio >= T(1) ? static_cast<uint32_t>(ratio) : 1u;
   }
-  const T lambda = lod_of_rho<T>(sampler, longer / T(n));
+  return {n, longer / T(n)};
+}
+
+// Sample i (1..n) of n along the longer axis: i / (n + 1) - 1/2 pixel steps from the centre.
+template <class T>
+T anisotropic_offset(uint32_t i, uint32_t n) {
+  return T(i) / T(n + 1) - T(0.5);
+}
+
+// sample() with the level of detail from the footprint, anisotropic when the sampler allows
+// more than one sample (EXT_texture_filter_anisotropic's formulation, core in OpenGL 4.6): with
+// the axis lengths px and py, N samples (anisotropy()) at lambda = log2(max / N) + bias,
+// clamped, spaced along the longer axis (x when px > py) at anisotropic_offset(), averaged
+// (summed in order, then divided by N).
+template <class T>
+std::array<T, 4> sample_footprint(const Texture::Storage& s, const Sampler& sampler, T u, T v,
+                                  T du_dx, T dv_dx, T du_dy, T dv_dy) {
+  const auto [px, py] = axis_lengths<T>(s, du_dx, dv_dx, du_dy, dv_dy);
+  const Anisotropy<T> aniso = anisotropy<T>(anisotropy_limit(sampler), px, py);
+  const uint32_t n = aniso.count;
+  const T lambda = lod_of_rho<T>(sampler, aniso.rho);
   if (n == 1) return sample<T>(s, sampler, u, v, lambda);
   const bool along_x = px > py;
   const T step_u = along_x ? du_dx : du_dy, step_v = along_x ? dv_dx : dv_dy;
-  std::array<T, 4> sum{};
+  std::array<T, 4> sum;
   for (uint32_t i = 1; i <= n; ++i) {
-    const T t = T(i) / T(n + 1) - T(0.5);
+    const T t = anisotropic_offset<T>(i, n);
     const auto c = sample<T>(s, sampler, u + t * step_u, v + t * step_v, lambda);
     for (int k = 0; k < 4; ++k)
-      sum[k] += c[k];
+      sum[k] = i == 1 ? c[k] : sum[k] + c[k];
   }
   for (int k = 0; k < 4; ++k)
     sum[k] /= T(n);
