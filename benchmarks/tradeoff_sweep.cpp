@@ -2,7 +2,8 @@
 // the standard workloads and real meshes, and for error against ground truth that needs no
 // trust in the fast engine: a 256-samples-per-pixel (16x16 grid) reference render for edges,
 // z-fighting of two close planes for depth formats, the analytic texture coordinates of a
-// receding checkerboard for interpolation, and hit counts on watertight meshes for snapping.
+// receding checkerboard for interpolation, hit counts on watertight meshes for snapping, and a
+// 256-samples-per-pixel reference render of a textured floor for texture filters.
 // Writes CSV and JSON; scripts/plot-tradeoffs.py draws the charts.
 #include <algorithm>
 #include <array>
@@ -25,6 +26,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "benchmarks/frame_times.hpp"
+#include "benchmarks/texture_workload.hpp"
 #include "tessera/io.hpp"
 #include "tessera/tessera.hpp"
 
@@ -451,6 +453,132 @@ bool dark_cell(double u, double v) {
   return (static_cast<int64_t>(std::floor(u)) + static_cast<int64_t>(std::floor(v))) % 2 != 0;
 }
 
+// --- Texture filtering ----------------------------------------------------------------------
+
+struct FilterChoice {
+  std::string name;
+  tessera::Sampler sampler;
+};
+
+// Nearest and bilinear from level 0 (GL_NEAREST, GL_LINEAR), trilinear
+// (GL_LINEAR_MIPMAP_LINEAR), and trilinear with up to 2, 4, 8 and 16 anisotropic samples; repeat
+// wrapping.
+std::vector<FilterChoice> texture_filters() {
+  std::vector<FilterChoice> out;
+  tessera::Sampler s;
+  s.mag_filter = s.min_filter = tessera::Filter::kNearest;
+  s.mip_filter = tessera::MipFilter::kNone;
+  out.push_back({"nearest", s});
+  s.mag_filter = s.min_filter = tessera::Filter::kLinear;
+  out.push_back({"bilinear", s});
+  s.mip_filter = tessera::MipFilter::kLinear;
+  out.push_back({"trilinear", s});
+  for (int n : {2, 4, 8, 16}) {
+    s.max_anisotropy = static_cast<float>(n);
+    out.push_back({"aniso" + std::to_string(n), s});
+  }
+  return out;
+}
+
+// The floor y = 0 seen from (0, 1, 0) looking 35 degrees down with a 60 degree vertical field of
+// view, so it fills the image: its footprints are about square at the bottom and stretched
+// about 12:1 at the top (where the view ray meets the floor at 5 degrees). (u, v) = (x, z) / 4:
+// one repeat of the 1024-texel benchmark texture per 4 x 4 units, so a pixel covers about 2
+// texels at the bottom and 17 by 200 at the top of a 320 x 180 image. Clip space: the same
+// triangles at any resolution of the aspect ratio.
+struct Floor {
+  std::vector<tessera::Float4> positions;
+  std::vector<float> uv;  // 2 per vertex
+};
+
+Floor textured_floor(float aspect) {
+  tessera::Camera camera;
+  camera.eye = {0, 1, 0};
+  const float pitch = 35.0f * std::numbers::pi_v<float> / 180.0f;
+  camera.target = {0, 1 - std::sin(pitch), -std::cos(pitch)};
+  camera.fov_y_degrees = 60.0f;
+  camera.near_plane = 0.05f;
+  camera.far_plane = 100.0f;
+  const glm::mat4 vp = camera.projection(aspect) * camera.view();
+  // 32 x 32 quads over x in [-30, 30], z in [0.5, -40].
+  Floor f;
+  const auto vertex = [&](int i, int j) {
+    const glm::vec3 p{-30.0f + 60.0f * static_cast<float>(i) / 32.0f, 0.0f,
+                      0.5f - 40.5f * static_cast<float>(j) / 32.0f};
+    const glm::vec4 clip = vp * glm::vec4(p, 1.0f);
+    f.positions.push_back({clip.x, clip.y, clip.z, clip.w});
+    f.uv.insert(f.uv.end(), {p.x / 4, p.z / 4});
+  };
+  for (int j = 0; j < 32; ++j) {
+    for (int i = 0; i < 32; ++i) {
+      for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}})
+        vertex(i + di, j + dj);
+    }
+  }
+  return f;
+}
+
+// The floor's draw: the textured shader with `sampler`, (u, v) the only varyings (so the texel
+// is drawn alone).
+tessera::PipelineState floor_pipeline(std::shared_ptr<const tessera::Texture> texture,
+                                      const tessera::Sampler& sampler) {
+  tessera::PipelineState pipeline;
+  pipeline.shader = tessera::FragmentShader::kTextured;
+  pipeline.roles.texcoord = 0;
+  pipeline.roles.color = 2;  // past the varyings: white
+  pipeline.texture = std::move(texture);
+  pipeline.sampler = sampler;
+  return pipeline;
+}
+
+tessera::DrawInput floor_input(const Floor& floor) {
+  tessera::DrawInput input;
+  input.positions = floor.positions;
+  input.attributes = floor.uv;
+  input.attribute_count = 2;
+  return input;
+}
+
+Image render_floor(const Floor& floor, std::shared_ptr<const tessera::Texture> texture,
+                   const tessera::Sampler& sampler, uint32_t width, uint32_t height,
+                   tessera::Backend backend) {
+  tessera::RendererOptions options;
+  options.backend = backend;
+  options.threads = 0;
+  tessera::Renderer renderer(options);
+  tessera::Framebuffer fb({width, height, 1, tessera::ColorFormat::kRGBA32F});
+  fb.clear_color({0, 0, 0, 0});
+  renderer.draw(fb, floor_pipeline(std::move(texture), sampler), floor_input(floor));
+  return {width, height, fb.read_rgba32f()};
+}
+
+// `fine` box-filtered by factor x factor pixels.
+Image downsample(const Image& fine, uint32_t factor) {
+  Image out{fine.width / factor, fine.height / factor, {}};
+  out.rgba.assign(size_t{out.width} * out.height * 4, 0.0f);
+  const float inv = 1.0f / static_cast<float>(factor * factor);
+  for (uint32_t y = 0; y < fine.height; ++y) {
+    for (uint32_t x = 0; x < fine.width; ++x) {
+      const size_t p = size_t{y / factor} * out.width + x / factor;
+      const size_t q = size_t{y} * fine.width + x;
+      for (int c = 0; c < 4; ++c)
+        out.rgba[p * 4 + c] += fine.rgba[q * 4 + c] * inv;
+    }
+  }
+  return out;
+}
+
+void write_rgb8(const fs::path& path, const Image& img) {
+  std::vector<uint8_t> rgb(size_t{img.width} * img.height * 3);
+  for (size_t p = 0; p < size_t{img.width} * img.height; ++p) {
+    for (int c = 0; c < 3; ++c) {
+      rgb[p * 3 + c] =
+          static_cast<uint8_t>(std::lround(std::clamp(img.rgba[p * 4 + c], 0.0f, 1.0f) * 255.0f));
+    }
+  }
+  tessera::write_image(path, img.width, img.height, 3, std::span<const uint8_t>(rgb));
+}
+
 // --- Output ---------------------------------------------------------------------------------
 
 class Table {
@@ -505,6 +633,87 @@ std::string num(double v, int precision = 6) {
 
 }  // namespace
 
+// Texture filters. Speed: the textured grid and medium workloads (benchmarks/
+// texture_workload.hpp; `captures`) and the floor with each filter, median ms per frame
+// (clear + draw). Error: the floor at
+// width x height, fast engine, float colour, against the reference with trilinear filtering at
+// 16 times the resolution, box-filtered: 256 samples per pixel, each filtered over its own
+// footprint (a 16th of the pixel's). Writes the floor images into out_dir.
+void texture_study(const std::vector<const Workload*>& captures,
+                   const std::vector<uint32_t>& thread_counts, int frames, uint32_t width,
+                   uint32_t height, const fs::path& out_dir, Table& speed, Table& quality,
+                   Progress& progress) {
+  const std::shared_ptr<const tessera::Texture> texture = tessera::bench::benchmark_texture();
+  const std::vector<FilterChoice> filters = texture_filters();
+  const Floor floor = textured_floor(static_cast<float>(width) / static_cast<float>(height));
+  constexpr uint32_t kFactor = 16;
+  tessera::Sampler truth_sampler = filters[2].sampler;  // trilinear
+  const Image fine = render_floor(floor, texture, truth_sampler, width * kFactor, height * kFactor,
+                                  tessera::Backend::kReference);
+  GroundTruth gt{downsample(fine, kFactor), std::vector<bool>(size_t{width} * height, false)};
+  write_rgb8(out_dir / "texture_ground_truth.png", gt.image);
+  progress.step("texture ground truth: 16x16 samples per pixel, reference");
+  // What is timed: the textured captures, and the floor at 1920 x 1080 (the aspect ratio of the
+  // error's image), where footprints stretch up to 12:1.
+  struct Timed {
+    std::string name;
+    uint32_t width, height;
+    tessera::PipelineState pipeline;
+    tessera::DrawInput input;
+    std::vector<float> varyings;  // the input's attributes (captures)
+  };
+  std::vector<Timed> timed;
+  for (const Workload* w : captures) {
+    timed.push_back({w->name,
+                     w->width,
+                     w->height,
+                     tessera::bench::textured_pipeline(texture, true),
+                     {},
+                     tessera::bench::textured_varyings(*w->capture)});
+    timed.back().input.positions = w->capture->positions;
+    timed.back().input.attributes = timed.back().varyings;
+    timed.back().input.attribute_count = tessera::bench::kTexturedVaryings;
+  }
+  const uint32_t floor_scale = captures.empty() ? 1 : 6;  // 1920 x 1080 but in --quick
+  timed.push_back({"floor",
+                   width * floor_scale,
+                   height * floor_scale,
+                   floor_pipeline(texture, tessera::Sampler{}),
+                   floor_input(floor),
+                   {}});
+  for (const FilterChoice& f : filters) {
+    for (Timed& t : timed) {
+      t.pipeline.sampler = f.sampler;
+      for (uint32_t threads : thread_counts) {
+        tessera::RendererOptions options;
+        options.threads = threads;
+        options.raster_counters = false;
+        tessera::Renderer renderer(options);
+        tessera::Framebuffer fb = framebuffer_for(Settings{}, t.width, t.height);
+        std::vector<double> ms;
+        for (int frame = -1; frame < frames; ++frame) {
+          const auto t0 = Clock::now();
+          clear(fb, Settings{});
+          renderer.draw(fb, t.pipeline, t.input);
+          if (frame >= 0) {
+            ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+          }
+        }
+        const double median = tessera::bench::median_of(ms);
+        speed.add({f.name, t.name, std::to_string(threads), num(median)});
+        progress.step("texture " + f.name + " " + t.name + " " + std::to_string(threads) +
+                      "t: " + num(median, 4) + " ms");
+      }
+    }
+    const Image img =
+        render_floor(floor, texture, f.sampler, width, height, tessera::Backend::kFast);
+    write_rgb8(out_dir / ("texture_" + f.name + ".png"), img);
+    const ImageError e = image_error(img, gt);
+    quality.add({f.name, num(e.rmse), num(e.psnr)});
+    progress.step("texture " + f.name + ": RMSE " + num(e.rmse, 4));
+  }
+}
+
 int main(int argc, char** argv) {
   CLI::App app{
       "Tessera's speed-against-accuracy sweep: CSV and JSON for scripts/plot-tradeoffs.py"};
@@ -514,6 +723,7 @@ int main(int argc, char** argv) {
   int frames = 5;
   bool quick = false;
   bool depth_only = false;
+  bool textures_only = false;
   app.add_option("--out", out_dir, "directory for the CSV and JSON files")->capture_default_str();
   app.add_option("--workloads", workload_dir, "directory of the standard TRI1 workloads")
       ->capture_default_str();
@@ -525,6 +735,8 @@ int main(int argc, char** argv) {
                "small images, one thread count, one frame, no workload files: a smoke run");
   app.add_flag("--depth-only", depth_only,
                "only the depth precision study (its tables stay empty)");
+  app.add_flag("--textures-only", textures_only,
+               "only the texture filter study (texture_*.csv; the other files are not written)");
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -535,6 +747,7 @@ int main(int argc, char** argv) {
     std::vector<Workload> workloads;
     if (!quick) {
       for (const char* name : {"tiny", "small", "medium", "large", "huge", "grid"}) {
+        if (textures_only && std::string(name) != "medium" && std::string(name) != "grid") continue;
         const fs::path path = fs::path(workload_dir) / (std::string(name) + ".tri");
         if (!fs::exists(path)) {
           std::fprintf(stderr, "sweep: %s is missing (scripts/make-workloads.sh makes it)\n",
@@ -585,8 +798,30 @@ int main(int argc, char** argv) {
     const int distances = quick ? 3 : 24;
     const uint32_t grid_sizes[] = {1u, 4u, 16u};
 
+    std::vector<const Workload*> textured;  // the texture study's captures
+    for (const Workload& w : workloads) {
+      if (w.name == "grid" || w.name == "medium") textured.push_back(&w);
+    }
+    const size_t texture_steps =
+        1 + texture_filters().size() * ((textured.size() + 1) * thread_counts.size() + 1);
+    const fs::path out(out_dir);
+    Table texture_speed({"filter", "workload", "threads", "ms_median"});
+    Table texture_quality({"filter", "rmse", "psnr"});
+    const auto write_texture_tables = [&] {
+      texture_speed.write_csv(out / "texture_speed.csv");
+      texture_quality.write_csv(out / "texture_quality.csv");
+    };
+    if (textures_only) {
+      Progress progress(texture_steps);
+      texture_study(textured, thread_counts, frames, qw, qh, out, texture_speed, texture_quality,
+                    progress);
+      write_texture_tables();
+      std::printf("wrote %s/texture_{speed,quality}.csv\n", out_dir.c_str());
+      return 0;
+    }
+
     Progress progress(1 + knobs.size() * (workloads.size() * thread_counts.size() + 1) +
-                      ratios.size() * 4 + 2 + 5);
+                      ratios.size() * 4 + 2 + 5 + texture_steps);
 
     Table speed({"knob", "value", "workload", "triangles", "threads", "ms_median", "mtri_s"});
     Table quality({"knob", "value", "rmse", "psnr", "rmse_edges", "psnr_edges", "edge_pixels"});
@@ -728,12 +963,17 @@ int main(int argc, char** argv) {
       progress.step("snapping " + std::to_string(bits) + " bits");
     }
 
-    const fs::path out(out_dir);
+    if (!depth_only) {
+      texture_study(textured, thread_counts, frames, qw, qh, out, texture_speed, texture_quality,
+                    progress);
+    }
+
     speed.write_csv(out / "speed.csv");
     quality.write_csv(out / "quality.csv");
     depth.write_csv(out / "depth_precision.csv");
     interp.write_csv(out / "interpolation.csv");
     snap.write_csv(out / "snapping.csv");
+    write_texture_tables();
     std::ofstream json(out / "sweep.json");
     json << "{\n\"speed\": ";
     speed.write_json(json);
@@ -745,10 +985,15 @@ int main(int argc, char** argv) {
     interp.write_json(json);
     json << ",\n\"snapping\": ";
     snap.write_json(json);
+    json << ",\n\"texture_speed\": ";
+    texture_speed.write_json(json);
+    json << ",\n\"texture_quality\": ";
+    texture_quality.write_json(json);
     json << "\n}\n";
     if (!json) throw tessera::Error(tessera::ErrorCode::kIo, "cannot write sweep.json");
     std::printf(
-        "wrote %s/{speed,quality,depth_precision,interpolation,snapping}.csv and sweep.json\n",
+        "wrote %s/{speed,quality,depth_precision,interpolation,snapping,texture_speed,"
+        "texture_quality}.csv and sweep.json\n",
         out_dir.c_str());
   } catch (const tessera::Error& e) {
     std::fprintf(stderr, "sweep: %s\n", e.what());

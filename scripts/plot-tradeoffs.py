@@ -156,6 +156,37 @@ def depth_chart(sweep, out):
     plt.close(fig)
 
 
+def texture_chart(sweep, out):
+    """Texture filters: time relative to trilinear (geometric mean over the textured workloads,
+    one thread) against the floor's RMSE. Skipped when the sweep has no texture tables."""
+    speed_path = os.path.join(sweep, "texture_speed.csv")
+    quality_path = os.path.join(sweep, "texture_quality.csv")
+    if not (os.path.exists(speed_path) and os.path.exists(quality_path)):
+        return
+    speed = [r for r in read(speed_path) if r["threads"] == "1"]
+    rmse = {r["filter"]: float(r["rmse"]) for r in read(quality_path)}
+    base = {r["workload"]: float(r["ms_median"]) for r in speed if r["filter"] == "trilinear"}
+    if not base:
+        return
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for name in rmse:
+        logs = [math.log(float(r["ms_median"]) / base[r["workload"]])
+                for r in speed if r["filter"] == name and r["workload"] in base]
+        if not logs:
+            continue
+        t = math.exp(sum(logs) / len(logs))
+        ax.plot([t], [rmse[name]], "o", color="tab:blue")
+        ax.annotate(name, (t, rmse[name]), textcoords="offset points", xytext=(6, 4), fontsize=9)
+    ax.set_xlabel("time per frame relative to trilinear (geometric mean, textured grid and "
+                  "medium, 1 thread)", fontsize=8)
+    ax.set_ylabel("floor RMSE (8-bit units) against 256 filtered samples per pixel", fontsize=9)
+    ax.set_title("texture filter: speed against error")
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "pareto_texture_filter.png"), dpi=110)
+    plt.close(fig)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -165,8 +196,9 @@ def main():
     pareto(speed, error_measures(sweep), out)
     speed_bars(speed, out)
     depth_chart(sweep, out)
+    texture_chart(sweep, out)
     for name in os.listdir(sweep):
-        if name.endswith((".csv", ".json")) or name.startswith("checkerboard_"):
+        if name.endswith((".csv", ".json")) or name.startswith(("checkerboard_", "texture_")):
             shutil.copy(os.path.join(sweep, name), os.path.join(out, name))
     print("plot-tradeoffs: wrote charts and data to %s" % out)
 
