@@ -157,8 +157,8 @@ def depth_chart(sweep, out):
 
 
 def texture_chart(sweep, out):
-    """Texture filters: time relative to trilinear (geometric mean over the textured workloads,
-    one thread) against the floor's RMSE. Skipped when the sweep has no texture tables."""
+    """Texture filters: time relative to trilinear (geometric mean over the textured grid, medium
+    and floor, one thread) against the floor's RMSE. Skipped when the sweep has no texture tables."""
     speed_path = os.path.join(sweep, "texture_speed.csv")
     quality_path = os.path.join(sweep, "texture_quality.csv")
     if not (os.path.exists(speed_path) and os.path.exists(quality_path)):
@@ -177,8 +177,8 @@ def texture_chart(sweep, out):
         t = math.exp(sum(logs) / len(logs))
         ax.plot([t], [rmse[name]], "o", color="tab:blue")
         ax.annotate(name, (t, rmse[name]), textcoords="offset points", xytext=(6, 4), fontsize=9)
-    ax.set_xlabel("time per frame relative to trilinear (geometric mean, textured grid and "
-                  "medium, 1 thread)", fontsize=8)
+    ax.set_xlabel("time per frame relative to trilinear (geometric mean: textured grid, medium "
+                  "and floor, 1 thread)", fontsize=8)
     ax.set_ylabel("floor RMSE (8-bit units) against 256 filtered samples per pixel", fontsize=9)
     ax.set_title("texture filter: speed against error")
     ax.grid(True, alpha=0.3)
