@@ -44,11 +44,11 @@ struct RunResult {
   std::string err;
 };
 
-// Runs tessera-render with `args` (already quoted where needed), capturing stdout and stderr.
-RunResult run_render(const TempDir& dir, const std::string& args) {
+// Runs the program `exe` with `args` (already quoted where needed), capturing stdout and
+// stderr.
+RunResult run_program(const char* exe, const TempDir& dir, const std::string& args) {
   const std::filesystem::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command =
-      quoted(TESSERA_RENDER_EXE) + " " + args + " >" + quoted(out) + " 2>" + quoted(err);
+  const std::string command = quoted(exe) + " " + args + " >" + quoted(out) + " 2>" + quoted(err);
   const int status = std::system(command.c_str());
   RunResult r;
   r.exited = status != -1 && WIFEXITED(status);
@@ -56,6 +56,10 @@ RunResult run_render(const TempDir& dir, const std::string& args) {
   r.out = read_file(out);
   r.err = read_file(err);
   return r;
+}
+
+RunResult run_render(const TempDir& dir, const std::string& args) {
+  return run_program(TESSERA_RENDER_EXE, dir, args);
 }
 
 // The image at `path`, or an empty one and a test failure when it cannot be read.
@@ -670,6 +674,50 @@ TEST(Cli, Tri2CapturesReplayTextured) {
     EXPECT_EQ(bad.err.find('\n'), bad.err.size() - 1) << "not one line: " << bad.err;
     EXPECT_NE(bad.err.find(words), std::string::npos) << args << ": " << bad.err;
   }
+}
+
+// tessera-occlusion (samples/tessera_occlusion.cpp): a wall over the left half of a 64 x 48
+// frame at depth 0.5; queries of two triangles each, behind the wall, in front of it, and
+// behind it but reaching past its edge: one answer line each in both modes, then the summary.
+// A missing capture is a one-line error naming it.
+TEST(Cli, OcclusionToolAnswersOneLinePerQuery) {
+  const TempDir dir;
+  const auto quad = [](float x0, float x1, float z) {
+    return std::vector<Float4>{{x0, 1, z, 1}, {x1, 1, z, 1},  {x1, -1, z, 1},
+                               {x0, 1, z, 1}, {x1, -1, z, 1}, {x0, -1, z, 1}};
+  };
+  const auto capture = [](std::vector<Float4> positions) {
+    Capture c;
+    c.width = 64;
+    c.height = 48;
+    c.varyings.assign(positions.size() * 4, 1.0f);
+    c.positions = std::move(positions);
+    return c;
+  };
+  save_capture(dir / "walls.tri", capture(quad(-1, 0, 0.5f)));
+  std::vector<Float4> queries = quad(-0.9f, -0.1f, 0.8f);
+  for (const std::vector<Float4>& q : {quad(-0.9f, -0.1f, 0.2f), quad(-0.5f, 0.5f, 0.8f)})
+    queries.insert(queries.end(), q.begin(), q.end());
+  save_capture(dir / "queries.tri", capture(queries));
+  for (const char* mode : {"conservative", "exact"}) {
+    const RunResult r = run_program(TESSERA_OCCLUSION_EXE, dir,
+                                    "--occluders " + quoted(dir / "walls.tri") + " --queries " +
+                                        quoted(dir / "queries.tri") + " --group 2 --mode " + mode);
+    ASSERT_TRUE(r.exited && r.exit_code == 0) << r.err;
+    EXPECT_EQ(r.out.substr(0, 6), "0\n1\n1\n") << mode << ": " << r.out;
+    EXPECT_EQ(lines_starting_with(r.out, "occluders: 2 triangles").size(), 1u) << r.out;
+    EXPECT_NE(r.out.find("queries: 3 (" + std::string(mode) +
+                         ", 2 triangles each), 2 visible, 1 "
+                         "hidden"),
+              std::string::npos)
+        << r.out;
+  }
+  const RunResult bad = run_program(
+      TESSERA_OCCLUSION_EXE, dir,
+      "--occluders " + quoted(dir / "missing.tri") + " --queries " + quoted(dir / "queries.tri"));
+  EXPECT_TRUE(bad.exited && bad.exit_code != 0);
+  EXPECT_NE(bad.err.find("missing.tri"), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tessera/tessera.hpp"
+#include "tests/expect_error.hpp"
 #include "tests/shading_scene.hpp"
 
 namespace tessera {
@@ -410,16 +411,7 @@ TEST(MultipleTargets, TargetsClearAndReadInTheirFormats) {
   EXPECT_EQ(fb.read_target_uint(3), std::vector<uint32_t>(pixels, 42u));
 }
 
-template <typename F>
-void expect_error(F&& f, ErrorCode code, const std::string& words) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected one naming " << words;
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-  }
-}
+using test::expect_error;
 
 TEST(MultipleTargets, BadTargetsFormatsAndReadsAreErrors) {
   FramebufferDesc d = mrt_desc(1, {});

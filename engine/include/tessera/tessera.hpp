@@ -7,6 +7,7 @@
 #include "tessera/error.hpp"
 #include "tessera/framebuffer.hpp"
 #include "tessera/mesh.hpp"
+#include "tessera/occlusion.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/primitives.hpp"
 #include "tessera/renderer.hpp"

@@ -28,6 +28,7 @@
 
 #include "binning/tile_grid.hpp"
 #include "engine/src/fast/block_kernel.hpp"
+#include "engine/src/fast/hiz.hpp"
 #include "engine/src/fast/pixel_record.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
@@ -43,6 +44,7 @@
 
 #include <hwy/highway.h>
 
+#include "engine/src/fast/hiz-inl.h"
 #include "engine/src/fast/unorm8-inl.h"
 #include "engine/src/shade/shade-inl.h"
 
@@ -240,48 +242,14 @@ HWY_INLINE hn::Vec<DU> sample_bits(DU du, uint32_t samples, const Passed& passed
   return bits;
 }
 
-enum class HizVerdict { kTest, kReject, kAccept };
-
-// Whether every sample of a block fails (reject) or passes (accept) the depth test, from the
-// block's depth bounds and the triangle's depth range over it.
-HizVerdict hiz_test(CompareOp op, float tri_lo, float tri_hi, float block_min, float block_max) {
-  switch (op) {
-    case CompareOp::kLess:
-      if (tri_lo >= block_max) return HizVerdict::kReject;
-      if (tri_hi < block_min) return HizVerdict::kAccept;
-      break;
-    case CompareOp::kLessEqual:
-      if (tri_lo > block_max) return HizVerdict::kReject;
-      if (tri_hi <= block_min) return HizVerdict::kAccept;
-      break;
-    case CompareOp::kGreater:
-      if (tri_hi <= block_min) return HizVerdict::kReject;
-      if (tri_lo > block_max) return HizVerdict::kAccept;
-      break;
-    case CompareOp::kGreaterEqual:
-      if (tri_hi < block_min) return HizVerdict::kReject;
-      if (tri_lo >= block_max) return HizVerdict::kAccept;
-      break;
-    default:
-      break;
-  }
-  return HizVerdict::kTest;
-}
-
 // The margin around a triangle's depth plane that covers the kernel's float rounding of it.
 inline double hiz_margin(const TriangleSetup& t) {
   return 1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
 }
 
-// Depth bounds [lo, hi] as Hi-Z compares them with a block's: for fixed-point formats in
-// steps, where a stored step round(z * scale) lies in [floor(lo * scale), ceil(hi * scale)].
+// Depth bounds [lo, hi] in the tile's depth encoding (hiz.hpp's hiz_range).
 inline void hiz_range(const TileContext& tc, double lo, double hi, float& out_lo, float& out_hi) {
-  if (tc.depth_scale > 0.0f) {
-    lo = std::floor(lo * tc.depth_scale);
-    hi = std::ceil(hi * tc.depth_scale);
-  }
-  out_lo = static_cast<float>(lo);
-  out_hi = static_cast<float>(hi);
+  fast::hiz_range(tc.depth_scale, lo, hi, out_lo, out_hi);
 }
 
 // Wide path: exact int64 coverage bits for each pixel of the block (see block_kernel.hpp).
@@ -308,33 +276,11 @@ void wide_coverage(const TriangleSetup& t, const TileContext& tc, int32_t bx, in
 // recomputes the bounds from the block's samples when it needs them, so triangles that never
 // test Hi-Z never pay for it.
 inline bool hiz_dirty(const TileContext& tc, size_t block) {
-  return !(tc.hiz_min[block] <= tc.hiz_max[block]);
+  return fast::hiz_dirty(tc.hiz_min[block], tc.hiz_max[block]);
 }
 
-// A block holding a NaN sample (a NaN depth clear), which fails every ordering compare and
-// which Min and Max may drop, is bounded by [-inf, inf]: up to date, and neither rejected nor
-// accepted.
-void refresh_hiz(const TileContext& tc, size_t block, uint32_t samples) {
-  const hn::ScalableTag<float> df;
-  const float* depth = tc.depth + block * 64;
-  auto lo = hn::Set(df, std::numeric_limits<float>::infinity());
-  auto hi = hn::Set(df, -std::numeric_limits<float>::infinity());
-  auto nan = hn::FirstN(df, 0);
-  for (uint32_t s = 0; s < samples; ++s) {
-    for (size_t i = 0; i < 64; i += hn::Lanes(df)) {
-      const auto z = hn::Load(df, depth + s * kSamplePlane + i);
-      lo = hn::Min(lo, z);
-      hi = hn::Max(hi, z);
-      nan = hn::Or(nan, hn::IsNaN(z));
-    }
-  }
-  if (!hn::AllFalse(df, nan)) {
-    tc.hiz_min[block] = -std::numeric_limits<float>::infinity();
-    tc.hiz_max[block] = std::numeric_limits<float>::infinity();
-    return;
-  }
-  tc.hiz_min[block] = hn::GetLane(hn::MinOfLanes(df, lo));
-  tc.hiz_max[block] = hn::GetLane(hn::MaxOfLanes(df, hi));
+inline void refresh_hiz(const TileContext& tc, size_t block, uint32_t samples) {
+  RefreshHizBlock(tc.depth + block * 64, samples, tc.hiz_min[block], tc.hiz_max[block]);
 }
 
 // Hi-Z's verdict on block `block` of the tile for depth bounds [lo, hi] (hiz_range's), with

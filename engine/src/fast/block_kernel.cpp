@@ -14,6 +14,8 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "engine/src/fast/hiz-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace tessera::fast::HWY_NAMESPACE {
 
@@ -43,6 +45,7 @@ const KernelTable* GetKernelTable() {
     FillShaderKernels<shade::Shader::kPhong>(t);
     FillShaderKernels<shade::Shader::kTextured>(t);
     FillShaderKernels<shade::Shader::kUser>(t);
+    t.refresh_hiz_block = &RefreshHizBlock;
     return t;
   }();
   return &table;

@@ -110,6 +110,9 @@ struct KernelTable {
   PixelKernel pixel_kernels[kDepthModes][kColorModes][2];
   // [depth][colour][counting]: two or four samples, and no colour or RGBA8 (null for RGBA32F).
   SampleKernel sample_kernels[kDepthModes][kColorModes][2];
+  // The Hi-Z bounds of one block from its samples (hiz-inl.h's RefreshHizBlock).
+  void (*refresh_hiz_block)(const float* depth, uint32_t samples, float& block_min,
+                            float& block_max) = nullptr;
 };
 
 // The kernels compiled for a Highway target bit (see simd/dispatch.hpp).

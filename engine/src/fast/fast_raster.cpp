@@ -18,6 +18,7 @@
 #include "binning/bins.hpp"
 #include "engine/src/draw_validation.hpp"
 #include "engine/src/fast/block_kernel.hpp"
+#include "engine/src/fast/hiz.hpp"
 #include "engine/src/fast/setup_kernel.hpp"
 #include "engine/src/fast/tile_raster.hpp"
 #include "engine/src/fast/triangle_setup.hpp"
@@ -56,14 +57,6 @@ struct Chunk {
   size_t stopped_at = 0;      // first triangle not binned (== end when all were)
   bool non_finite = false;    // setup read a NaN or infinite position or colour
 };
-
-// Marks every block's Hi-Z bounds out of date (the kernels recompute a block's when they need
-// it): for depth written by someone that does not maintain them.
-void invalidate_hiz(detail::FramebufferStorage& fb) {
-  std::fill(fb.hiz_min.begin(), fb.hiz_min.end(), std::numeric_limits<float>::infinity());
-  std::fill(fb.hiz_max.begin(), fb.hiz_max.end(), -std::numeric_limits<float>::infinity());
-  fb.hiz_valid = true;
-}
 
 // Runs body, whose allocations the bin budget bounds (the chunks, a pass's setup and
 // binning): their std::bad_alloc becomes BinMemoryError.
