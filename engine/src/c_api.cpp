@@ -22,6 +22,7 @@
 
 #include "tessera/error.hpp"
 #include "tessera/framebuffer.hpp"
+#include "tessera/occlusion.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/primitives.hpp"
 #include "tessera/renderer.hpp"
@@ -42,6 +43,13 @@ struct tessera_texture {
                   const tessera_allocator& a)
       : texture(std::make_shared<const tessera::Texture>(desc, texels, mipmaps)), allocator(a) {}
   std::shared_ptr<const tessera::Texture> texture;  // shared with the draws' pipelines
+  tessera_allocator allocator;
+};
+
+struct tessera_occlusion {
+  tessera_occlusion(const tessera::OcclusionDesc& desc, const tessera_allocator& a)
+      : occlusion(desc), allocator(a) {}
+  tessera::OcclusionBuffer occlusion;
   tessera_allocator allocator;
 };
 
@@ -66,6 +74,8 @@ constexpr bool same(C c, E e) {
 static_assert(TESSERA_MAX_VARYINGS == tessera::kMaxVaryings);
 static_assert(TESSERA_MAX_LIGHTS == tessera::kMaxLights);
 static_assert(TESSERA_MAX_FRAMEBUFFER_SIZE == tessera::kMaxFramebufferSize);
+static_assert(same(TESSERA_OCCLUSION_CONSERVATIVE, tessera::OcclusionMode::kConservative) &&
+              same(TESSERA_OCCLUSION_EXACT, tessera::OcclusionMode::kExact));
 static_assert(TESSERA_MAX_COLOR_TARGETS == tessera::kMaxColorTargets);
 static_assert(same(TESSERA_COLOR_RGBA8, tessera::ColorFormat::kRGBA8) &&
               same(TESSERA_COLOR_RGBA32F, tessera::ColorFormat::kRGBA32F) &&
@@ -767,6 +777,92 @@ tessera_result tessera_draw_lines(tessera_renderer* renderer, tessera_framebuffe
     tessera::Framebuffer& fb = deref(framebuffer, "framebuffer").framebuffer;
     r.draw_lines(fb, to_cpp(deref(pipeline, "pipeline")), to_cpp(deref(state, "state")),
                  to_cpp(deref(input, "input")));
+  });
+}
+
+// ---- Occlusion queries ----------------------------------------------------------------------
+
+tessera_result tessera_occlusion_create(const tessera_occlusion_desc* desc,
+                                        const tessera_allocator* allocator,
+                                        tessera_occlusion** out) {
+  if (out != nullptr) *out = nullptr;
+  return guarded(__func__, [&] {
+    tessera_occlusion*& result = deref(out, "out");
+    const tessera_occlusion_desc& c = deref(desc, "desc");
+    tessera::OcclusionDesc cpp;
+    cpp.width = c.width;
+    cpp.height = c.height;
+    cpp.samples = c.samples == 0 ? 1 : c.samples;
+    cpp.depth_format = to_cpp_enum<tessera::DepthFormat>(c.depth_format, "depth_format");
+    cpp.reversed_z = c.reversed_z;
+    cpp.threads = c.threads;
+    result = create_handle<tessera_occlusion>(allocator, cpp);
+  });
+}
+
+void tessera_occlusion_destroy(tessera_occlusion* occlusion) {
+  destroy_handle(occlusion);
+}
+
+tessera_result tessera_occlusion_clear(tessera_occlusion* occlusion) {
+  return guarded(__func__, [&] { deref(occlusion, "occlusion").occlusion.clear(); });
+}
+
+tessera_result tessera_occlusion_draw(tessera_occlusion* occlusion,
+                                      const tessera_draw_input* occluders) {
+  return guarded(__func__, [&] {
+    tessera::OcclusionBuffer& o = deref(occlusion, "occlusion").occlusion;
+    o.draw_occluders(to_cpp(deref(occluders, "occluders")));
+  });
+}
+
+tessera_result tessera_occlusion_rect_visible(const tessera_occlusion* occlusion, float x0,
+                                              float y0, float x1, float y1, float nearest_depth,
+                                              tessera_occlusion_mode mode, bool* visible) {
+  return guarded(__func__, [&] {
+    const tessera::OcclusionBuffer& o = deref(occlusion, "occlusion").occlusion;
+    bool& v = deref(visible, "visible");
+    v = o.rect_visible(x0, y0, x1, y1, nearest_depth,
+                       to_cpp_enum<tessera::OcclusionMode>(mode, "mode"));
+  });
+}
+
+tessera_result tessera_occlusion_box_visible(const tessera_occlusion* occlusion, const float lo[3],
+                                             const float hi[3], const float clip_from_object[16],
+                                             tessera_occlusion_mode mode, bool* visible) {
+  return guarded(__func__, [&] {
+    const tessera::OcclusionBuffer& o = deref(occlusion, "occlusion").occlusion;
+    bool& v = deref(visible, "visible");
+    const float* l = &deref(lo, "lo");
+    const float* h = &deref(hi, "hi");
+    const float* m = &deref(clip_from_object, "clip_from_object");
+    glm::mat4 matrix;
+    for (int column = 0; column < 4; ++column) {
+      for (int row = 0; row < 4; ++row)
+        matrix[column][row] = m[column * 4 + row];
+    }
+    v = o.box_visible({l[0], l[1], l[2]}, {h[0], h[1], h[2]}, matrix,
+                      to_cpp_enum<tessera::OcclusionMode>(mode, "mode"));
+  });
+}
+
+tessera_result tessera_occlusion_triangles_visible(const tessera_occlusion* occlusion,
+                                                   const tessera_draw_input* triangles,
+                                                   tessera_occlusion_mode mode, bool* visible) {
+  return guarded(__func__, [&] {
+    const tessera::OcclusionBuffer& o = deref(occlusion, "occlusion").occlusion;
+    bool& v = deref(visible, "visible");
+    v = o.triangles_visible(to_cpp(deref(triangles, "triangles")),
+                            to_cpp_enum<tessera::OcclusionMode>(mode, "mode"));
+  });
+}
+
+tessera_result tessera_occlusion_read_depth(const tessera_occlusion* occlusion, float* dst,
+                                            size_t capacity) {
+  return guarded(__func__, [&] {
+    const tessera::Framebuffer& fb = deref(occlusion, "occlusion").occlusion.framebuffer();
+    read_image(dst, capacity, pixels(fb.desc()), "floats",
+               image_name(fb.desc(), "depth image").c_str(), [&] { return fb.read_depth(); });
   });
 }
 

@@ -527,6 +527,61 @@ TESSERA_API tessera_result tessera_draw_lines(tessera_renderer* renderer,
                                               const tessera_line_state* state,
                                               const tessera_draw_input* input);
 
+/* ---- Occlusion queries (tessera/occlusion.hpp, docs/OCCLUSION.md) ------------------------ */
+
+typedef enum tessera_occlusion_mode {
+  TESSERA_OCCLUSION_CONSERVATIVE =
+      0,                       /* Hi-Z only: may see a hidden query, never hides a seen one */
+  TESSERA_OCCLUSION_EXACT = 1, /* every sample, LESS_EQUAL, no writes */
+  TESSERA_OCCLUSION_MODE_MAX_ENUM = 0x7FFFFFFF
+} tessera_occlusion_mode;
+
+/* tessera::OcclusionDesc: a depth-only buffer of width x height (samples 0 means 1). */
+typedef struct tessera_occlusion_desc {
+  uint32_t width;
+  uint32_t height;
+  uint32_t samples;
+  tessera_depth_format depth_format;
+  bool reversed_z;  /* depth cleared to 0, GREATER occluders, GREATER_EQUAL queries */
+  uint32_t threads; /* the occluder draws' worker threads (0: every core) */
+} tessera_occlusion_desc;
+
+/* Occluders in depth, asked what they hide (tessera::OcclusionBuffer). The query functions may
+ * run from several threads at once while no clear or draw runs on the same buffer. */
+typedef struct tessera_occlusion tessera_occlusion;
+
+/* Creates a buffer with nothing drawn. `allocator` may be NULL. On failure *out is NULL. */
+TESSERA_API tessera_result tessera_occlusion_create(const tessera_occlusion_desc* desc,
+                                                    const tessera_allocator* allocator,
+                                                    tessera_occlusion** out);
+/* Destroys a buffer; NULL is ignored. Cannot fail. */
+TESSERA_API void tessera_occlusion_destroy(tessera_occlusion* occlusion);
+TESSERA_API tessera_result tessera_occlusion_clear(tessera_occlusion* occlusion);
+/* Draws clip-space triangles (input's positions and indices; attributes ignored) as occluders. */
+TESSERA_API tessera_result tessera_occlusion_draw(tessera_occlusion* occlusion,
+                                                  const tessera_draw_input* occluders);
+/* *visible: whether the window rectangle [x0, x1) x [y0, y1) at nearest_depth would be seen. */
+TESSERA_API tessera_result tessera_occlusion_rect_visible(const tessera_occlusion* occlusion,
+                                                          float x0, float y0, float x1, float y1,
+                                                          float nearest_depth,
+                                                          tessera_occlusion_mode mode,
+                                                          bool* visible);
+/* *visible: whether the box [lo, hi] through clip_from_object (16 floats, column-major as
+ * OpenGL and GLM store a matrix: projection * view * model) would be seen. */
+TESSERA_API tessera_result tessera_occlusion_box_visible(const tessera_occlusion* occlusion,
+                                                         const float lo[3], const float hi[3],
+                                                         const float clip_from_object[16],
+                                                         tessera_occlusion_mode mode,
+                                                         bool* visible);
+/* *visible: whether any of the clip-space triangles would be seen. */
+TESSERA_API tessera_result tessera_occlusion_triangles_visible(const tessera_occlusion* occlusion,
+                                                               const tessera_draw_input* triangles,
+                                                               tessera_occlusion_mode mode,
+                                                               bool* visible);
+/* The buffer's depth (width * height floats, top row first; the first sample of each pixel). */
+TESSERA_API tessera_result tessera_occlusion_read_depth(const tessera_occlusion* occlusion,
+                                                        float* dst, size_t capacity);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif

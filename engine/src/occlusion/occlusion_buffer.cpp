@@ -28,6 +28,13 @@ namespace {
   throw Error(ErrorCode::kInvalidArgument, message);
 }
 
+void check_mode(OcclusionMode mode, const char* function) {
+  if (mode != OcclusionMode::kConservative && mode != OcclusionMode::kExact) {
+    fail(std::string("OcclusionBuffer::") + function + ": mode " +
+         std::to_string(static_cast<int>(mode)) + " is not an OcclusionMode");
+  }
+}
+
 // A query's window-space bounds: the pixels [x0, x1) x [y0, y1) it may touch and its depth
 // range, widened by a margin that covers the raster kernels' rounding of depth planes.
 struct QueryBounds {
@@ -207,6 +214,7 @@ void OcclusionBuffer::draw_occluders(const DrawInput& occluders) {
 
 bool OcclusionBuffer::rect_visible(float x0, float y0, float x1, float y1, float nearest_depth,
                                    OcclusionMode mode) const {
+  check_mode(mode, "rect_visible");
   if (std::isnan(x0) || std::isnan(y0) || std::isnan(x1) || std::isnan(y1) ||
       std::isnan(nearest_depth)) {
     fail("OcclusionBuffer::rect_visible: a bound or the depth is NaN");
@@ -240,6 +248,7 @@ bool OcclusionBuffer::rect_visible(float x0, float y0, float x1, float y1, float
 
 bool OcclusionBuffer::box_visible(const glm::vec3& lo, const glm::vec3& hi,
                                   const glm::mat4& clip_from_object, OcclusionMode mode) const {
+  check_mode(mode, "box_visible");
   for (int k = 0; k < 3; ++k) {
     if (!std::isfinite(lo[k]) || !std::isfinite(hi[k]) || !(lo[k] <= hi[k])) {
       fail(
@@ -284,6 +293,7 @@ bool OcclusionBuffer::box_visible(const glm::vec3& lo, const glm::vec3& hi,
 }
 
 bool OcclusionBuffer::triangles_visible(const DrawInput& triangles, OcclusionMode mode) const {
+  check_mode(mode, "triangles_visible");
   DrawInput input = triangles;
   input.attributes = {};
   input.attribute_count = 0;
