@@ -2,9 +2,10 @@
 //
 //   tessera-occlusion --occluders O.tri --queries Q.tri --group N [--mode exact|conservative]
 //
-// Draws O's triangles as occluders into a depth buffer of O's size (TRI1/TRI2 conventions:
-// clip space, z/w in [0, 1]), then takes Q's triangles N at a time as one query each and prints
-// one line per query, 1 (visible) or 0 (hidden), then a summary line with the times.
+// Draws O's triangles as occluders into a depth buffer of O's size or --width x --height
+// (TRI1/TRI2 conventions: clip space, z/w in [0, 1]), then takes Q's triangles N at a time as one
+// query each and prints one line per query, 1 (visible) or 0 (hidden), then a summary line with the
+// times.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -22,7 +23,7 @@ int main(int argc, char** argv) {
       "Occlusion queries: occluder triangles into depth, then query triangles N at a "
       "time, one answer line each (1 visible, 0 hidden) and a summary"};
   std::string occluders_path, queries_path, mode_name = "conservative";
-  uint32_t group = 1, threads = 1, samples = 1;
+  uint32_t group = 1, threads = 1, samples = 1, width = 0, height = 0;
   bool quiet = false;
   app.add_option("--occluders", occluders_path, "TRI1/TRI2 capture drawn as occluders")->required();
   app.add_option("--queries", queries_path, "TRI1/TRI2 capture whose triangles are the queries")
@@ -37,6 +38,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--samples", samples, "samples per pixel of the depth buffer")
       ->capture_default_str();
+  app.add_option("--width", width, "the depth buffer's width (default: the occluders' frame)");
+  app.add_option("--height", height, "the depth buffer's height (default: the occluders' frame)");
   app.add_flag("--quiet", quiet, "print the summary line only");
   CLI11_PARSE(app, argc, argv);
   try {
@@ -47,8 +50,8 @@ int main(int argc, char** argv) {
                                             ? tessera::OcclusionMode::kExact
                                             : tessera::OcclusionMode::kConservative;
     tessera::OcclusionDesc desc;
-    desc.width = occluders.width;
-    desc.height = occluders.height;
+    desc.width = width != 0 ? width : occluders.width;
+    desc.height = height != 0 ? height : occluders.height;
     desc.samples = samples;
     desc.threads = threads;
     tessera::OcclusionBuffer occlusion(desc);
