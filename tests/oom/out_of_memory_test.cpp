@@ -74,6 +74,11 @@ void* operator new(size_t bytes, std::align_val_t alignment, const std::nothrow_
 void* operator new[](size_t bytes, std::align_val_t alignment, const std::nothrow_t&) noexcept {
   return allocate_or_null(bytes, static_cast<size_t>(alignment));
 }
+// The deletes free what the news above malloc'd. GCC 12 at -O1 sees a delete inlined where
+// the replaced operator new was called and warns of a mismatch (-Wmismatched-new-delete): a
+// false positive for replacement functions.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void operator delete(void* p, const std::nothrow_t&) noexcept {
   std::free(p);
 }
@@ -110,6 +115,7 @@ void operator delete(void* p, size_t, std::align_val_t) noexcept {
 void operator delete[](void* p, size_t, std::align_val_t) noexcept {
   std::free(p);
 }
+#pragma GCC diagnostic pop
 
 namespace tessera {
 namespace {
