@@ -167,8 +167,11 @@ void draw_workload(tessera::Renderer& renderer, tessera::Framebuffer& fb, const 
   }
 }
 
-// Median ms per frame (clear + draw) over `frames` frames after one warm-up.
-double time_frames(const Settings& s, const Workload& w, uint32_t threads, int frames) {
+// Median ms per frame (clear + draw(renderer, fb)) over `frames` frames after one warm-up, on a
+// width x height framebuffer with the settings' renderer options.
+double median_frame_ms(const Settings& s, uint32_t width, uint32_t height, uint32_t threads,
+                       int frames,
+                       const std::function<void(tessera::Renderer&, tessera::Framebuffer&)>& draw) {
   tessera::RendererOptions options;
   options.threads = threads;
   options.hiz = s.hiz;
@@ -176,17 +179,24 @@ double time_frames(const Settings& s, const Workload& w, uint32_t threads, int f
   options.block_size = s.block_size;
   options.raster_counters = false;
   tessera::Renderer renderer(options);
-  tessera::Framebuffer fb = framebuffer_for(s, w.width, w.height);
-  Settings timed = s;
-  if (w.capture) timed.reversed_z = false;  // a capture's depth is fixed: reversed Z is a camera
+  tessera::Framebuffer fb = framebuffer_for(s, width, height);
   std::vector<double> ms;
   for (int f = -1; f < frames; ++f) {
     const auto t0 = Clock::now();
-    clear(fb, timed);
-    draw_workload(renderer, fb, timed, w);
+    clear(fb, s);
+    draw(renderer, fb);
     if (f >= 0) ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
   }
   return tessera::bench::median_of(ms);
+}
+
+double time_frames(const Settings& s, const Workload& w, uint32_t threads, int frames) {
+  Settings timed = s;
+  if (w.capture) timed.reversed_z = false;  // a capture's depth is fixed: reversed Z is a camera
+  return median_frame_ms(timed, w.width, w.height, threads, frames,
+                         [&](tessera::Renderer& renderer, tessera::Framebuffer& fb) {
+                           draw_workload(renderer, fb, timed, w);
+                         });
 }
 
 // --- Edge quality ---------------------------------------------------------------------------
@@ -685,21 +695,11 @@ void texture_study(const std::vector<const Workload*>& captures,
     for (Timed& t : timed) {
       t.pipeline.sampler = f.sampler;
       for (uint32_t threads : thread_counts) {
-        tessera::RendererOptions options;
-        options.threads = threads;
-        options.raster_counters = false;
-        tessera::Renderer renderer(options);
-        tessera::Framebuffer fb = framebuffer_for(Settings{}, t.width, t.height);
-        std::vector<double> ms;
-        for (int frame = -1; frame < frames; ++frame) {
-          const auto t0 = Clock::now();
-          clear(fb, Settings{});
-          renderer.draw(fb, t.pipeline, t.input);
-          if (frame >= 0) {
-            ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-          }
-        }
-        const double median = tessera::bench::median_of(ms);
+        const double median =
+            median_frame_ms(Settings{}, t.width, t.height, threads, frames,
+                            [&](tessera::Renderer& renderer, tessera::Framebuffer& fb) {
+                              renderer.draw(fb, t.pipeline, t.input);
+                            });
         speed.add({f.name, t.name, std::to_string(threads), num(median)});
         progress.step("texture " + f.name + " " + t.name + " " + std::to_string(threads) +
                       "t: " + num(median, 4) + " ms");

@@ -244,7 +244,7 @@ HWY_INLINE hn::Vec<DU> sample_bits(DU du, uint32_t samples, const Passed& passed
 
 // The margin around a triangle's depth plane that covers the kernel's float rounding of it.
 inline double hiz_margin(const TriangleSetup& t) {
-  return 1e-6 * (1.0 + std::abs(t.z0) + 16.0 * (std::abs(t.z_dx) + std::abs(t.z_dy)));
+  return fast::hiz_margin(t.z0, t.z_dx, t.z_dy);
 }
 
 // Depth bounds [lo, hi] in the tile's depth encoding (hiz.hpp's hiz_range).

@@ -42,6 +42,13 @@ inline HizVerdict hiz_test(CompareOp op, float tri_lo, float tri_hi, float block
   return HizVerdict::kTest;
 }
 
+// The margin around a depth plane with value z0 at a block's origin and slopes z_dx, z_dy per
+// pixel that covers the raster kernels' float rounding of it over a block (so Hi-Z rejects
+// only what every sample's depth would fail).
+inline double hiz_margin(double z0, float z_dx, float z_dy) {
+  return 1e-6 * (1.0 + std::abs(z0) + 16.0 * (std::abs(z_dx) + std::abs(z_dy)));
+}
+
 // Depth bounds [lo, hi] as Hi-Z compares them with a block's: for fixed-point formats
 // (depth_scale > 0) in steps, where a stored step round(z * scale) lies in [floor(lo * scale),
 // ceil(hi * scale)].

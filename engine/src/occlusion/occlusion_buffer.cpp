@@ -222,7 +222,7 @@ bool OcclusionBuffer::rect_visible(float x0, float y0, float x1, float y1, float
   const double z = std::clamp(double{nearest_depth}, 0.0, 1.0);
   if (!(x0 < x1 && y0 < y1)) return false;  // empty
   if (mode == OcclusionMode::kConservative) {
-    const double margin = 1e-6 * (1.0 + z);
+    const double margin = fast::hiz_margin(z, 0.0f, 0.0f);
     return !impl_->hidden_by_hiz({x0, y0, x1, y1, z - margin, z + margin});
   }
   // Two triangles at depth z (w = 1), the rectangle clamped a buffer's size beyond its edges
@@ -336,7 +336,7 @@ bool OcclusionBuffer::triangles_visible(const DrawInput& triangles, OcclusionMod
     for (int k = 0; k < 3; ++k)
       win[k] = impl_->to_window(p[k]->x, p[k]->y, p[k]->z, p[k]->w);
     // The depth plane's slopes per pixel (0 for a degenerate triangle), for the margin the
-    // engine's Hi-Z gives its own triangles.
+    // engine's Hi-Z gives its own triangles (fast::hiz_margin).
     const double ax = win[1][0] - win[0][0], ay = win[1][1] - win[0][1];
     const double bx = win[2][0] - win[0][0], by = win[2][1] - win[0][1];
     const double az = win[1][2] - win[0][2], bz = win[2][2] - win[0][2];
@@ -344,7 +344,7 @@ bool OcclusionBuffer::triangles_visible(const DrawInput& triangles, OcclusionMod
     const double z_dx = area != 0 ? (az * by - bz * ay) / area : 0.0;
     const double z_dy = area != 0 ? (ax * bz - bx * az) / area : 0.0;
     visible = !impl_->hidden_by_hiz(bounds_of(win, [&](double lo, double) {
-      return 1e-6 * (1.0 + std::abs(lo) + 16.0 * (std::abs(z_dx) + std::abs(z_dy)));
+      return fast::hiz_margin(lo, static_cast<float>(z_dx), static_cast<float>(z_dy));
     }));
   }
   return visible;

@@ -268,10 +268,7 @@ HWY_INLINE void sample_lanes(DF df, const LaneTexture& src, VF u, VF v, VF du_dx
     VF ri, gi, bi, ai;
     sample_at(not_nan(su), not_nan(sv), ri, gi, bi, ai);
     const auto active = hn::RebindMask(df, hn::Lt(hn::Set(di, static_cast<int32_t>(i) - 1), n));
-    r = hn::IfThenElse(active, hn::Add(r, ri), r);
-    g = hn::IfThenElse(active, hn::Add(g, gi), g);
-    b = hn::IfThenElse(active, hn::Add(b, bi), b);
-    a = hn::IfThenElse(active, hn::Add(a, ai), a);
+    select(active, r, g, b, a, hn::Add(r, ri), hn::Add(g, gi), hn::Add(b, bi), hn::Add(a, ai));
   }
   const VF nf = hn::ConvertTo(df, n);
   r = hn::Div(r, nf);
