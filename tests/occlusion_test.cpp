@@ -185,6 +185,62 @@ TEST(Occlusion, ExactAnswersMatchTheDepthBufferAndConservativeOnesNeverHideMore)
               conservative_hidden);
 }
 
+// Random rectangles with corners anywhere (whole, half and quarter pixels, and between): the
+// exact answer, which may come from the Hi-Z blocks alone, is the answer of drawing the
+// rectangle's two triangles, at 1, 4 and 16 samples, float and 16-bit depth, and reversed Z.
+TEST(Occlusion, ExactRectanglesAnswerAsTheirTwoTrianglesDo) {
+  constexpr uint32_t kW = 80, kH = 72;
+  // The rectangle as rect_visible draws it: corners through clip space in double.
+  const auto corners = [](double x0, double y0, double x1, double y1, float z) {
+    const auto cx = [](double x) { return static_cast<float>(x / kW * 2 - 1); };
+    const auto cy = [](double y) { return static_cast<float>(1 - y / kH * 2); };
+    return std::vector<Float4>{{cx(x0), cy(y0), z, 1}, {cx(x1), cy(y0), z, 1},
+                               {cx(x1), cy(y1), z, 1}, {cx(x0), cy(y0), z, 1},
+                               {cx(x1), cy(y1), z, 1}, {cx(x0), cy(y1), z, 1}};
+  };
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> pos(-1.2f, 1.2f), depth(0.1f, 0.9f);
+  std::uniform_int_distribution<int> px(0, int(kW) * 4), py(0, int(kH) * 4), frac(0, 3);
+  for (uint32_t samples : {1u, 4u, 16u}) {
+    for (DepthFormat format : {DepthFormat::kFloat32, DepthFormat::kUnorm16}) {
+      for (bool reversed : {false, true}) {
+        OcclusionBuffer occlusion({kW, kH, samples, format, reversed});
+        const auto z = [&](float d) { return reversed ? 1 - d : d; };
+        std::vector<Float4> occluders;
+        for (int t = 0; t < 40; ++t) {
+          for (int k = 0; k < 3; ++k)
+            occluders.push_back({pos(rng), pos(rng), z(depth(rng) * 0.5f), 1.0f});
+        }
+        occlusion.draw_occluders(input_of(occluders));
+        int visible = 0;
+        for (int q = 0; q < 150; ++q) {
+          // A quarter-pixel grid, and off it a third of the time.
+          const auto corner = [&](int quarter) {
+            return quarter / 4.0 - 4 + (frac(rng) == 0 ? 0.3 : 0.0);
+          };
+          double x0 = corner(px(rng)), x1 = corner(px(rng)), y0 = corner(py(rng)),
+                 y1 = corner(py(rng));
+          if (x0 > x1) std::swap(x0, x1);
+          if (y0 > y1) std::swap(y0, y1);
+          const float d = z(depth(rng) * 0.6f);
+          const bool rect = occlusion.rect_visible(float(x0), float(y0), float(x1), float(y1), d,
+                                                   OcclusionMode::kExact);
+          const bool drawn = occlusion.triangles_visible(
+              input_of(corners(float(x0), float(y0), float(x1), float(y1), d)),
+              OcclusionMode::kExact);
+          ASSERT_EQ(rect, drawn) << samples << " samples, format " << int(format)
+                                 << (reversed ? ", reversed" : "") << ", query " << q << ": [" << x0
+                                 << ", " << x1 << ") x [" << y0 << ", " << y1 << ") at " << d;
+          visible += rect;
+        }
+        // Both answers occur.
+        EXPECT_GT(visible, 15) << samples << " samples";
+        EXPECT_LT(visible, 135) << samples << " samples";
+      }
+    }
+  }
+}
+
 // Random triangle queries: the conservative answer is visible wherever the exact one is, at
 // one and four samples; and queries from four threads at once give the serial answers.
 TEST(Occlusion, TriangleQueriesAreConservativeAndSafeFromSeveralThreads) {

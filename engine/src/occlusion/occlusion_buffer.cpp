@@ -148,14 +148,22 @@ struct OcclusionBuffer::Impl {
     return visible;
   }
 
-  // Whether Hi-Z rejects every block the bounds touch (false also for bounds past the buffer).
-  bool hidden_by_hiz(const QueryBounds& q) const {
+  // What the Hi-Z blocks say of a query within bounds `q`: hidden when every block the bounds
+  // touch rejects it (also for bounds past the buffer), visible when a block accepts it and
+  // holds one of the pixels in `inside` (x0, y0, x1, y1, inclusive), whose every sample the
+  // query surely covers; otherwise unknown.
+  enum class Answer { kHidden, kVisible, kUnknown };
+  Answer hiz_answer(const QueryBounds& q,
+                    const std::array<double, 4>& inside = {1, 1, 0, 0}) const {
     const detail::FramebufferStorage& s = detail::FramebufferAccess::storage(std::as_const(fb));
     const double w = s.desc.width, h = s.desc.height;
     // The pixels the bounds overlap (a superset of those whose samples they cover).
     const double px0 = std::max(std::floor(q.x0), 0.0), py0 = std::max(std::floor(q.y0), 0.0);
     const double px1 = std::min(std::ceil(q.x1), w) - 1, py1 = std::min(std::ceil(q.y1), h) - 1;
-    if (!(px0 <= px1 && py0 <= py1)) return true;  // nothing on the buffer
+    if (!(px0 <= px1 && py0 <= py1)) return Answer::kHidden;  // nothing on the buffer
+    // The surely covered pixels on the buffer.
+    const double ix0 = std::max(inside[0], 0.0), iy0 = std::max(inside[1], 0.0);
+    const double ix1 = std::min(inside[2], w - 1), iy1 = std::min(inside[3], h - 1);
     float lo, hi;
     fast::hiz_range(static_cast<float>(detail::depth_scale(s.desc.depth_format)), q.z_lo, q.z_hi,
                     lo, hi);
@@ -163,20 +171,30 @@ struct OcclusionBuffer::Impl {
     const uint32_t by0 = static_cast<uint32_t>(py0) >> detail::kBlockSizeLog2;
     const uint32_t bx1 = static_cast<uint32_t>(px1) >> detail::kBlockSizeLog2;
     const uint32_t by1 = static_cast<uint32_t>(py1) >> detail::kBlockSizeLog2;
+    bool hidden = true;
     for (uint32_t by = by0; by <= by1; ++by) {
       for (uint32_t bx = bx0; bx <= bx1; ++bx) {
         const uint32_t x = bx << detail::kBlockSizeLog2, y = by << detail::kBlockSizeLog2;
         const size_t block = size_t{s.grid.tile_of(x, y)} * detail::kBlocksPerTile +
                              detail::in_tile(x, y) / detail::kBlockPixels;
         const float block_min = s.hiz_min[block], block_max = s.hiz_max[block];
-        if (fast::hiz_dirty(block_min, block_max)) return false;
-        if (fast::hiz_test(query_pipeline.depth_compare, lo, hi, block_min, block_max) !=
-            fast::HizVerdict::kReject) {
-          return false;
+        if (fast::hiz_dirty(block_min, block_max)) {
+          hidden = false;
+          continue;
+        }
+        const fast::HizVerdict verdict =
+            fast::hiz_test(query_pipeline.depth_compare, lo, hi, block_min, block_max);
+        if (verdict == fast::HizVerdict::kReject) continue;
+        hidden = false;
+        const double last = detail::kBlockSize - 1;
+        if (verdict == fast::HizVerdict::kAccept &&
+            std::max<double>(x, ix0) <= std::min(x + last, ix1) &&
+            std::max<double>(y, iy0) <= std::min(y + last, iy1)) {
+          return Answer::kVisible;
         }
       }
     }
-    return true;
+    return hidden ? Answer::kHidden : Answer::kUnknown;
   }
 
   // Window x, y and depth of a clip-space point with w > 0.
@@ -221,10 +239,17 @@ bool OcclusionBuffer::rect_visible(float x0, float y0, float x1, float y1, float
   }
   const double z = std::clamp(double{nearest_depth}, 0.0, 1.0);
   if (!(x0 < x1 && y0 < y1)) return false;  // empty
-  if (mode == OcclusionMode::kConservative) {
-    const double margin = fast::hiz_margin(z, 0.0f, 0.0f);
-    return !impl_->hidden_by_hiz({x0, y0, x1, y1, z - margin, z + margin});
-  }
+  // The Hi-Z answer first: what it hides no sample can see, so the exact mode draws only what
+  // it leaves visible.
+  // A pixel whose every sample the rectangle covers lies an eighth of a pixel inside it (more
+  // than the rounding of its corners through clip space and the raster's snapping).
+  const double margin = fast::hiz_margin(z, 0.0f, 0.0f);
+  const Impl::Answer answer =
+      impl_->hiz_answer({x0, y0, x1, y1, z - margin, z + margin},
+                        {std::ceil(x0 + 0.125), std::ceil(y0 + 0.125), std::floor(x1 - 0.125) - 1,
+                         std::floor(y1 - 0.125) - 1});
+  if (answer != Impl::Answer::kUnknown) return answer == Impl::Answer::kVisible;
+  if (mode == OcclusionMode::kConservative) return true;
   // Two triangles at depth z (w = 1), the rectangle clamped a buffer's size beyond its edges
   // (inside the clipper's guard band).
   const double w = impl_->desc.width, h = impl_->desc.height;
@@ -273,14 +298,15 @@ bool OcclusionBuffer::box_visible(const glm::vec3& lo, const glm::vec3& hi,
   }
   if (tally.culled()) return false;
   if (tally.behind) return true;  // reaches behind the near plane: around the eye
-  if (mode == OcclusionMode::kConservative) {
-    std::array<std::array<double, 3>, 8> window;
-    for (uint32_t c = 0; c < 8; ++c)
-      window[c] = impl_->to_window(clip[c].x, clip[c].y, clip[c].z, clip[c].w);
-    return !impl_->hidden_by_hiz(bounds_of(window, [](double z_lo, double z_hi) {
-      return 1e-6 * (1.0 + std::abs(z_lo) + (z_hi - z_lo));
-    }));
+  std::array<std::array<double, 3>, 8> window;
+  for (uint32_t c = 0; c < 8; ++c)
+    window[c] = impl_->to_window(clip[c].x, clip[c].y, clip[c].z, clip[c].w);
+  if (impl_->hiz_answer(bounds_of(window, [](double z_lo, double z_hi) {
+        return 1e-6 * (1.0 + std::abs(z_lo) + (z_hi - z_lo));
+      })) == Impl::Answer::kHidden) {
+    return false;
   }
+  if (mode == OcclusionMode::kConservative) return true;
   std::array<Float4, 8> positions;
   for (uint32_t c = 0; c < 8; ++c) {
     positions[c] = {static_cast<float>(clip[c].x), static_cast<float>(clip[c].y),
@@ -297,7 +323,6 @@ bool OcclusionBuffer::triangles_visible(const DrawInput& triangles, OcclusionMod
   DrawInput input = triangles;
   input.attributes = {};
   input.attribute_count = 0;
-  if (mode == OcclusionMode::kExact) return impl_->exact(input);
   const size_t count = input.indices.empty() ? input.positions.size() : input.indices.size();
   if (count % 3 != 0) {
     throw Error(ErrorCode::kInvalidInput,
@@ -343,11 +368,13 @@ bool OcclusionBuffer::triangles_visible(const DrawInput& triangles, OcclusionMod
     const double area = ax * by - ay * bx;
     const double z_dx = area != 0 ? (az * by - bz * ay) / area : 0.0;
     const double z_dy = area != 0 ? (ax * bz - bx * az) / area : 0.0;
-    visible = !impl_->hidden_by_hiz(bounds_of(win, [&](double lo, double) {
+    visible = impl_->hiz_answer(bounds_of(win, [&](double lo, double) {
       return fast::hiz_margin(lo, static_cast<float>(z_dx), static_cast<float>(z_dy));
-    }));
+    })) != Impl::Answer::kHidden;
   }
-  return visible;
+  // What Hi-Z hides no sample can see; the rest is drawn.
+  if (!visible || mode == OcclusionMode::kConservative) return visible;
+  return impl_->exact(input);
 }
 
 }  // namespace tessera
