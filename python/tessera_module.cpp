@@ -24,6 +24,7 @@
 #include "tessera/error.hpp"
 #include "tessera/framebuffer.hpp"
 #include "tessera/mesh.hpp"
+#include "tessera/occlusion.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
@@ -128,6 +129,9 @@ constexpr std::pair<std::string_view, TargetOutput> kOutputNames[] = {
     {"barycentrics", TargetOutput::kBarycentrics},
     {"primitive_id", TargetOutput::kPrimitiveId},
     {"object_id", TargetOutput::kObjectId}};
+constexpr std::pair<std::string_view, tessera::OcclusionMode> kOcclusionModeNames[] = {
+    {"conservative", tessera::OcclusionMode::kConservative},
+    {"exact", tessera::OcclusionMode::kExact}};
 constexpr std::pair<std::string_view, LightKind> kLightKindNames[] = {
     {"directional", LightKind::kDirectional},
     {"point", LightKind::kPoint},
@@ -230,10 +234,11 @@ py::array_t<float> to_numpy(const glm::mat4& matrix) {
 }
 
 glm::mat4 to_mat4(const py::array& array, const char* name) {
-  check_array<float>(array, name, "float32", 2, 4);
-  if (array.shape(0) != 4) {
+  check_array<float>(array, name, "float32", 2, 0);
+  if (array.shape(0) != 4 || array.shape(1) != 4) {
     throw py::value_error(std::string(name) + " must have shape (4, 4), got (" +
-                          std::to_string(array.shape(0)) + ", 4)");
+                          std::to_string(array.shape(0)) + ", " + std::to_string(array.shape(1)) +
+                          ")");
   }
   const float* values = static_cast<const float*>(array.data());
   glm::mat4 matrix;
@@ -267,9 +272,9 @@ py::array_t<float> rows_to_numpy(const std::vector<Vector>& rows, py::ssize_t co
   return to_numpy(std::move(values), {static_cast<py::ssize_t>(rows.size()), columns});
 }
 
-void draw(Renderer& renderer, Framebuffer& target, const py::array& positions,
-          const std::optional<py::array>& varyings, const std::optional<py::array>& indices,
-          const PipelineState* pipeline) {
+// A draw's input read in place from the arrays, which must outlive it.
+tessera::DrawInput draw_input(const py::array& positions, const std::optional<py::array>& varyings,
+                              const std::optional<py::array>& indices) {
   check_array<float>(positions, "positions", "float32", 2, 4);
   tessera::DrawInput input;
   input.positions = {static_cast<const tessera::Float4*>(positions.data()),
@@ -289,6 +294,13 @@ void draw(Renderer& renderer, Framebuffer& target, const py::array& positions,
     input.indices = {static_cast<const uint32_t*>(indices->data()),
                      static_cast<size_t>(indices->size())};
   }
+  return input;
+}
+
+void draw(Renderer& renderer, Framebuffer& target, const py::array& positions,
+          const std::optional<py::array>& varyings, const std::optional<py::array>& indices,
+          const PipelineState* pipeline) {
+  const tessera::DrawInput input = draw_input(positions, varyings, indices);
   const PipelineState state = pipeline ? *pipeline : PipelineState{};
   // The arrays stay referenced by this call's arguments while the GIL is released.
   py::gil_scoped_release release;
@@ -738,6 +750,154 @@ PYBIND11_MODULE(tessera, m) {
       py::arg("path"), py::arg("srgb") = false, py::arg("mipmaps") = true,
       "A Texture from an image file (OpenImageIO: PNG, JPEG, EXR, TIFF, ...).");
 #endif
+
+  using tessera::OcclusionBuffer;
+  using tessera::OcclusionMode;
+  py::class_<OcclusionBuffer>(
+      m, "OcclusionBuffer",
+      "Occluders drawn into a depth buffer only, then queries: would a window rectangle, a box "
+      "or a triangle list be visible behind them (tessera/occlusion.hpp, docs/OCCLUSION.md). "
+      "mode \"conservative\" answers from the 8x8 blocks' depth bounds (may say visible for a "
+      "hidden query, never hidden for a visible one); \"exact\" tests every covered sample. "
+      "Queries release the GIL and may run from several threads while no occluders are drawn.")
+      .def(py::init([](uint32_t width, uint32_t height, uint32_t samples, std::string_view depth,
+                       bool reversed_z, uint32_t threads) {
+             tessera::OcclusionDesc desc;
+             desc.width = width;
+             desc.height = height;
+             desc.samples = samples;
+             desc.depth_format = parse<DepthFormat>(kDepthNames, "depth", depth);
+             desc.reversed_z = reversed_z;
+             desc.threads = threads;
+             return std::make_unique<OcclusionBuffer>(desc);
+           }),
+           py::arg("width"), py::arg("height"), py::arg("samples") = 1,
+           py::arg("depth") = "float32", py::arg("reversed_z") = false, py::arg("threads") = 0)
+      .def_property_readonly("width", [](const OcclusionBuffer& self) { return self.desc().width; })
+      .def_property_readonly("height",
+                             [](const OcclusionBuffer& self) { return self.desc().height; })
+      .def_property_readonly("samples",
+                             [](const OcclusionBuffer& self) { return self.desc().samples; })
+      .def("clear", &OcclusionBuffer::clear, py::call_guard<py::gil_scoped_release>(),
+           "Every sample at the far depth: nothing occludes.")
+      .def(
+          "draw_occluders",
+          [](OcclusionBuffer& self, const py::array& positions,
+             const std::optional<py::array>& indices) {
+            const tessera::DrawInput input = draw_input(positions, std::nullopt, indices);
+            py::gil_scoped_release release;
+            self.draw_occluders(input);
+          },
+          py::arg("positions"), py::arg("indices") = py::none(),
+          "Draws clip-space triangles ((n, 4) float32 positions, uint32 indices of shape (3m,) "
+          "or (m, 3)) into the depth buffer, both faces.")
+      .def(
+          "rect_visible",
+          [](const OcclusionBuffer& self, float x0, float y0, float x1, float y1,
+             float nearest_depth, std::string_view mode) {
+            const OcclusionMode how = parse<OcclusionMode>(kOcclusionModeNames, "mode", mode);
+            py::gil_scoped_release release;
+            return self.rect_visible(x0, y0, x1, y1, nearest_depth, how);
+          },
+          py::arg("x0"), py::arg("y0"), py::arg("x1"), py::arg("y1"), py::arg("nearest_depth"),
+          py::arg("mode") = "conservative",
+          "Whether the window rectangle [x0, x1) x [y0, y1) (pixels, y down) at window depth "
+          "nearest_depth (0..1) would be visible.")
+      .def(
+          "rects_visible",
+          [](const OcclusionBuffer& self, const py::array& rects, const py::array& depths,
+             std::string_view mode) {
+            check_array<float>(rects, "rects", "float32", 2, 4);
+            check_array<float>(depths, "depths", "float32", 1, 0);
+            if (depths.shape(0) != rects.shape(0)) {
+              throw py::value_error("depths holds " + std::to_string(depths.shape(0)) +
+                                    " values for " + std::to_string(rects.shape(0)) + " rects");
+            }
+            const OcclusionMode how = parse<OcclusionMode>(kOcclusionModeNames, "mode", mode);
+            const auto n = static_cast<size_t>(rects.shape(0));
+            const float* r = static_cast<const float*>(rects.data());
+            const float* z = static_cast<const float*>(depths.data());
+            std::vector<bool> visible(n);
+            {
+              py::gil_scoped_release release;
+              for (size_t i = 0; i < n; ++i)
+                visible[i] = self.rect_visible(r[4 * i], r[4 * i + 1], r[4 * i + 2], r[4 * i + 3],
+                                               z[i], how);
+            }
+            py::array_t<bool> out(static_cast<py::ssize_t>(n));
+            std::copy(visible.begin(), visible.end(), out.mutable_data());
+            return out;
+          },
+          py::arg("rects"), py::arg("depths"), py::arg("mode") = "conservative",
+          "rect_visible for each row (x0, y0, x1, y1) of an (n, 4) float32 array and each "
+          "nearest depth of an (n,) float32 array: an (n,) bool array.")
+      .def(
+          "box_visible",
+          [](const OcclusionBuffer& self, const std::array<float, 3>& lo,
+             const std::array<float, 3>& hi, const py::array& clip_from_object,
+             std::string_view mode) {
+            const glm::mat4 matrix = to_mat4(clip_from_object, "clip_from_object");
+            const OcclusionMode how = parse<OcclusionMode>(kOcclusionModeNames, "mode", mode);
+            py::gil_scoped_release release;
+            return self.box_visible({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, matrix, how);
+          },
+          py::arg("lo"), py::arg("hi"), py::arg("clip_from_object"),
+          py::arg("mode") = "conservative",
+          "Whether the axis-aligned box [lo, hi] (object space) seen through the 4x4 float32 "
+          "matrix clip_from_object (projection @ view @ model) would be visible; a box reaching "
+          "behind the near plane is visible.")
+      .def(
+          "boxes_visible",
+          [](const OcclusionBuffer& self, const py::array& lo, const py::array& hi,
+             const py::array& clip_from_object, std::string_view mode) {
+            check_array<float>(lo, "lo", "float32", 2, 3);
+            check_array<float>(hi, "hi", "float32", 2, 3);
+            if (hi.shape(0) != lo.shape(0)) {
+              throw py::value_error("hi holds " + std::to_string(hi.shape(0)) + " corners for " +
+                                    std::to_string(lo.shape(0)) + " in lo");
+            }
+            const glm::mat4 matrix = to_mat4(clip_from_object, "clip_from_object");
+            const OcclusionMode how = parse<OcclusionMode>(kOcclusionModeNames, "mode", mode);
+            const auto n = static_cast<size_t>(lo.shape(0));
+            const glm::vec3* l = static_cast<const glm::vec3*>(lo.data());
+            const glm::vec3* h = static_cast<const glm::vec3*>(hi.data());
+            std::vector<bool> visible(n);
+            {
+              py::gil_scoped_release release;
+              for (size_t i = 0; i < n; ++i)
+                visible[i] = self.box_visible(l[i], h[i], matrix, how);
+            }
+            py::array_t<bool> out(static_cast<py::ssize_t>(n));
+            std::copy(visible.begin(), visible.end(), out.mutable_data());
+            return out;
+          },
+          py::arg("lo"), py::arg("hi"), py::arg("clip_from_object"),
+          py::arg("mode") = "conservative",
+          "box_visible for each row of (n, 3) float32 arrays lo and hi through one matrix: an "
+          "(n,) bool array.")
+      .def(
+          "triangles_visible",
+          [](const OcclusionBuffer& self, const py::array& positions,
+             const std::optional<py::array>& indices, std::string_view mode) {
+            const tessera::DrawInput input = draw_input(positions, std::nullopt, indices);
+            const OcclusionMode how = parse<OcclusionMode>(kOcclusionModeNames, "mode", mode);
+            py::gil_scoped_release release;
+            return self.triangles_visible(input, how);
+          },
+          py::arg("positions"), py::arg("indices") = py::none(), py::arg("mode") = "conservative",
+          "Whether any of the clip-space triangles would be visible (arrays as draw_occluders).")
+      .def(
+          "read_depth",
+          [](const OcclusionBuffer& self) {
+            std::vector<float> depth;
+            {
+              py::gil_scoped_release release;
+              depth = self.framebuffer().read_depth();
+            }
+            return to_numpy(std::move(depth), {static_cast<py::ssize_t>(self.desc().height),
+                                               static_cast<py::ssize_t>(self.desc().width)});
+          },
+          "Depth of sample 0 of each pixel: an HxW float32 array.");
 
   py::class_<Renderer>(m, "Renderer",
                        "Draws triangles into framebuffers on its own threads (0: all cores). "
