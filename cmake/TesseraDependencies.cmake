@@ -24,6 +24,13 @@ endif()
 # subproject's. The public headers do not include Highway, so consumers need none of it.
 add_compile_definitions("TESSERA_HWY_DISABLED_TARGETS_EXPR=(${_hwy_disabled})"
                         "HWY_DISABLED_TARGETS=TESSERA_HWY_DISABLED_TARGETS_EXPR")
+# The portable target (EMU128) beside the SIMD ones everywhere. Highway leaves out targets below
+# the compiler's baseline, which on Arm is NEON, so without this an Arm build has no scalar
+# kernels to force (SimdTarget::kScalar) and compare with NEON and SVE. On x86-64 the baseline
+# is below SSE4 and every attainable target is compiled already.
+if(NOT CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64|i[3-6]86)$")
+  add_compile_definitions(HWY_COMPILE_ALL_ATTAINABLE)
+endif()
 
 if(TESSERA_BUILD_IO)
   find_package(assimp CONFIG REQUIRED)
