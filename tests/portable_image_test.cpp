@@ -36,23 +36,6 @@ uint64_t digest(const shading_scene::Image& image) {
   return fnv1a(hash, std::as_bytes(std::span(image.depth)));
 }
 
-// A 64x32 RGBA8 texture of coloured checks, with its mip chain.
-std::shared_ptr<const Texture> checks() {
-  constexpr uint32_t w = 64, h = 32;
-  std::vector<uint8_t> p;
-  for (uint32_t y = 0; y < h; ++y) {
-    for (uint32_t x = 0; x < w; ++x) {
-      const bool odd = ((x / 4) + (y / 4)) % 2 != 0;
-      p.push_back(static_cast<uint8_t>(odd ? 230 : 20 + x));
-      p.push_back(static_cast<uint8_t>(odd ? 40 + 3 * y : 200));
-      p.push_back(static_cast<uint8_t>((x * 7 + y * 3) % 256));
-      p.push_back(static_cast<uint8_t>(odd ? 255 : 128));
-    }
-  }
-  return std::make_shared<Texture>(TextureDesc{w, h, TextureFormat::kRGBA8},
-                                   std::as_bytes(std::span<const uint8_t>(p)), true);
-}
-
 struct Case {
   const char* name;
   PipelineState pipeline;
@@ -80,7 +63,7 @@ std::vector<Case> cases() {
   out.push_back({"phong, rgba8, 4 samples", phong, ColorFormat::kRGBA8, 4, 0, 0});
   PipelineState textured;
   textured.shader = FragmentShader::kTextured;
-  textured.texture = checks();
+  textured.texture = shading_scene::checks();
   textured.roles.texcoord = 7;
   textured.sampler.mag_filter = textured.sampler.min_filter = Filter::kLinear;
   textured.sampler.mip_filter = MipFilter::kLinear;

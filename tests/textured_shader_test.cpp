@@ -28,30 +28,12 @@ using shading_scene::Mesh;
 using shading_scene::Target;
 using shading_scene::test_mesh;
 
-// A 64x32 RGBA8 texture of coloured checks of 4 texels with a ramp across them, so that every
-// filter and mip level gives distinct values, with its mip chain.
-std::shared_ptr<const Texture> checks() {
-  constexpr uint32_t w = 64, h = 32;
-  std::vector<uint8_t> p;
-  for (uint32_t y = 0; y < h; ++y) {
-    for (uint32_t x = 0; x < w; ++x) {
-      const bool odd = ((x / 4) + (y / 4)) % 2 != 0;
-      p.push_back(static_cast<uint8_t>(odd ? 230 : 20 + x));
-      p.push_back(static_cast<uint8_t>(odd ? 40 + 3 * y : 200));
-      p.push_back(static_cast<uint8_t>((x * 7 + y * 3) % 256));
-      p.push_back(static_cast<uint8_t>(odd ? 255 : 128));
-    }
-  }
-  return std::make_shared<Texture>(TextureDesc{w, h, TextureFormat::kRGBA8},
-                                   std::as_bytes(std::span<const uint8_t>(p)), true);
-}
-
 // The scene's eye-space position x and y (varyings 7 and 8) as (u, v): about three repeats of
 // the texture across the near sheet, minified on the far ones.
 PipelineState textured(const Sampler& sampler) {
   PipelineState p;
   p.shader = FragmentShader::kTextured;
-  p.texture = checks();
+  p.texture = shading_scene::checks();
   p.sampler = sampler;
   p.roles.texcoord = 7;
   return p;
