@@ -44,6 +44,17 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.c
   -DTESSERA_BUILD_PYTHON=OFF -DTESSERA_INSTALL=OFF >/dev/null
 cmake --build "$build" -j "$(nproc)" --target tessera_tests tessera_c_api_test
 
+# qemu-user must run threads: the renderers draw with several, and a host whose qemu cannot
+# start one (as on a sandboxed kernel) would hang every such test. A two-line program tells.
+probe="$build/thread-probe"
+printf '#include <thread>\nint main() { std::thread([] {}).join(); }\n' |
+  aarch64-linux-gnu-g++ -x c++ -std=c++20 -pthread - -o "$probe"
+if ! timeout 20 qemu-aarch64 -L /usr/aarch64-linux-gnu "$probe"; then
+  echo "check-arm-run: qemu-aarch64 cannot start a thread on this host (a std::thread program" \
+    "did not finish in 20 s): skipped"
+  exit 77
+fi
+
 failed=0
 for cpu in $cpus; do
   case "$cpu" in
