@@ -272,6 +272,28 @@ py::array_t<float> rows_to_numpy(const std::vector<Vector>& rows, py::ssize_t co
   return to_numpy(std::move(values), {static_cast<py::ssize_t>(rows.size()), columns});
 }
 
+// The depth of sample 0 of each pixel as an HxW float32 array, read without the GIL.
+py::array_t<float> depth_image(const Framebuffer& fb) {
+  std::vector<float> depth;
+  {
+    py::gil_scoped_release release;
+    depth = fb.read_depth();
+  }
+  return to_numpy(std::move(depth), {fb.height(), fb.width()});
+}
+
+// An (n,) bool array of answer(i) for each i, computed without the GIL (answer must not touch
+// Python objects).
+template <class Answer>
+py::array_t<bool> answers(size_t n, Answer answer) {
+  py::array_t<bool> out(static_cast<py::ssize_t>(n));
+  bool* data = out.mutable_data();
+  py::gil_scoped_release release;
+  for (size_t i = 0; i < n; ++i)
+    data[i] = answer(i);
+  return out;
+}
+
 // A draw's input read in place from the arrays, which must outlive it.
 tessera::DrawInput draw_input(const py::array& positions, const std::optional<py::array>& varyings,
                               const std::optional<py::array>& indices) {
@@ -643,15 +665,7 @@ PYBIND11_MODULE(tessera, m) {
           "Resolved colour in the framebuffer's format: HxWx4 uint8 (rgba8) or float32 "
           "(rgba32f).")
       .def(
-          "read_depth",
-          [](const Framebuffer& self) {
-            std::vector<float> depth;
-            {
-              py::gil_scoped_release release;
-              depth = self.read_depth();
-            }
-            return to_numpy(std::move(depth), {self.height(), self.width()});
-          },
+          "read_depth", [](const Framebuffer& self) { return depth_image(self); },
           "Depth of sample 0 of each pixel in [0, 1], top row first: an HxW float32 array.")
       .def(
           "read_sample_depth",
@@ -817,16 +831,10 @@ PYBIND11_MODULE(tessera, m) {
             const auto n = static_cast<size_t>(rects.shape(0));
             const float* r = static_cast<const float*>(rects.data());
             const float* z = static_cast<const float*>(depths.data());
-            std::vector<bool> visible(n);
-            {
-              py::gil_scoped_release release;
-              for (size_t i = 0; i < n; ++i)
-                visible[i] = self.rect_visible(r[4 * i], r[4 * i + 1], r[4 * i + 2], r[4 * i + 3],
-                                               z[i], how);
-            }
-            py::array_t<bool> out(static_cast<py::ssize_t>(n));
-            std::copy(visible.begin(), visible.end(), out.mutable_data());
-            return out;
+            return answers(n, [&](size_t i) {
+              return self.rect_visible(r[4 * i], r[4 * i + 1], r[4 * i + 2], r[4 * i + 3], z[i],
+                                       how);
+            });
           },
           py::arg("rects"), py::arg("depths"), py::arg("mode") = "conservative",
           "rect_visible for each row (x0, y0, x1, y1) of an (n, 4) float32 array and each "
@@ -861,15 +869,7 @@ PYBIND11_MODULE(tessera, m) {
             const auto n = static_cast<size_t>(lo.shape(0));
             const glm::vec3* l = static_cast<const glm::vec3*>(lo.data());
             const glm::vec3* h = static_cast<const glm::vec3*>(hi.data());
-            std::vector<bool> visible(n);
-            {
-              py::gil_scoped_release release;
-              for (size_t i = 0; i < n; ++i)
-                visible[i] = self.box_visible(l[i], h[i], matrix, how);
-            }
-            py::array_t<bool> out(static_cast<py::ssize_t>(n));
-            std::copy(visible.begin(), visible.end(), out.mutable_data());
-            return out;
+            return answers(n, [&](size_t i) { return self.box_visible(l[i], h[i], matrix, how); });
           },
           py::arg("lo"), py::arg("hi"), py::arg("clip_from_object"),
           py::arg("mode") = "conservative",
@@ -887,16 +887,7 @@ PYBIND11_MODULE(tessera, m) {
           py::arg("positions"), py::arg("indices") = py::none(), py::arg("mode") = "conservative",
           "Whether any of the clip-space triangles would be visible (arrays as draw_occluders).")
       .def(
-          "read_depth",
-          [](const OcclusionBuffer& self) {
-            std::vector<float> depth;
-            {
-              py::gil_scoped_release release;
-              depth = self.framebuffer().read_depth();
-            }
-            return to_numpy(std::move(depth), {static_cast<py::ssize_t>(self.desc().height),
-                                               static_cast<py::ssize_t>(self.desc().width)});
-          },
+          "read_depth", [](const OcclusionBuffer& self) { return depth_image(self.framebuffer()); },
           "Depth of sample 0 of each pixel: an HxW float32 array.");
 
   py::class_<Renderer>(m, "Renderer",

@@ -239,8 +239,7 @@ bool OcclusionBuffer::rect_visible(float x0, float y0, float x1, float y1, float
   }
   const double z = std::clamp(double{nearest_depth}, 0.0, 1.0);
   if (!(x0 < x1 && y0 < y1)) return false;  // empty
-  // The Hi-Z answer first: what it hides no sample can see, so the exact mode draws only what
-  // it leaves visible.
+  // The Hi-Z answer first, for both modes: the exact mode draws only what it leaves unknown.
   // A pixel whose every sample the rectangle covers lies an eighth of a pixel inside it (more
   // than the rounding of its corners through clip space and the raster's snapping).
   const double margin = fast::hiz_margin(z, 0.0f, 0.0f);
