@@ -38,15 +38,11 @@ for pkg in TBB hwy GTest; do
   fi
 done
 
-cmake -S . -B "$build" -G Ninja -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake \
-  -DCMAKE_BUILD_TYPE=Release -DTESSERA_WERROR=ON -DTESSERA_BUILD_TESTS=ON \
-  -DTESSERA_BUILD_BENCHMARKS=OFF -DTESSERA_BUILD_SAMPLES=OFF -DTESSERA_BUILD_IO=OFF \
-  -DTESSERA_BUILD_PYTHON=OFF -DTESSERA_INSTALL=OFF >/dev/null
-cmake --build "$build" -j "$(nproc)" --target tessera_tests tessera_c_api_test
-
 # qemu-user must run threads: the renderers draw with several, and a host whose qemu cannot
-# start one (as on a sandboxed kernel) would hang every such test. A two-line program tells.
-probe="$build/thread-probe"
+# start one (as on a sandboxed kernel) would hang every such test. A two-line program tells,
+# before the long cross build.
+probe=$(mktemp "${TMPDIR:-/tmp}/tessera-thread-probe.XXXXXX")
+trap 'rm -f "$probe"' EXIT
 printf '#include <thread>\nint main() { std::thread([] {}).join(); }\n' |
   aarch64-linux-gnu-g++ -x c++ -std=c++20 -pthread - -o "$probe"
 if ! timeout 20 qemu-aarch64 -L /usr/aarch64-linux-gnu "$probe"; then
@@ -54,6 +50,12 @@ if ! timeout 20 qemu-aarch64 -L /usr/aarch64-linux-gnu "$probe"; then
     "did not finish in 20 s): skipped"
   exit 77
 fi
+
+cmake -S . -B "$build" -G Ninja -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake \
+  -DCMAKE_BUILD_TYPE=Release -DTESSERA_WERROR=ON -DTESSERA_BUILD_TESTS=ON \
+  -DTESSERA_BUILD_BENCHMARKS=OFF -DTESSERA_BUILD_SAMPLES=OFF -DTESSERA_BUILD_IO=OFF \
+  -DTESSERA_BUILD_PYTHON=OFF -DTESSERA_INSTALL=OFF >/dev/null
+cmake --build "$build" -j "$(nproc)" --target tessera_tests tessera_c_api_test
 
 failed=0
 for cpu in $cpus; do
