@@ -27,6 +27,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "benchmarks/blend_workload.hpp"
 #include "benchmarks/frame_times.hpp"
 #include "benchmarks/phong_workload.hpp"
 #include "benchmarks/texture_workload.hpp"
@@ -408,12 +409,20 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
   // Upload once: the timed frames draw from a buffer object, as an application would.
   const bool phong = o.shading == "phong";
   const bool textured = o.shading == "bilinear" || o.shading == "trilinear";
+  const bool blended = o.shading == "blended";
   const std::vector<float> vertices =
-      textured ? interleave(capture, tessera::bench::textured_varyings(capture),
-                            tessera::bench::kTexturedVaryings)
-      : phong  ? interleave(capture, tessera::bench::phong_varyings(capture),
-                            tessera::bench::kPhongVaryings)
-               : interleave(capture, capture.varyings, 4);
+      textured  ? interleave(capture, tessera::bench::textured_varyings(capture),
+                             tessera::bench::kTexturedVaryings)
+      : phong   ? interleave(capture, tessera::bench::phong_varyings(capture),
+                             tessera::bench::kPhongVaryings)
+      : blended ? interleave(capture, tessera::bench::blended_varyings(capture), 4)
+                : interleave(capture, capture.varyings, 4);
+  if (blended) {  // blend_workload.hpp's state
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+  }
   GLuint vbo = 0;
   glGenBuffers(1, &vbo);
   glBindBuffer(GL_ARRAY_BUFFER, vbo);
@@ -569,8 +578,10 @@ int main(int argc, char** argv) {
   app.add_option("--shading", o.shading,
                  "gouraud (the capture's colours); phong: per-pixel Phong in GLSL of the "
                  "varyings benchmarks/phong_workload.hpp makes from the capture; bilinear or "
-                 "trilinear: the texture of benchmarks/texture_workload.hpp times the colour")
-      ->check(CLI::IsMember({"gouraud", "phong", "bilinear", "trilinear"}))
+                 "trilinear: the texture of benchmarks/texture_workload.hpp times the colour; "
+                 "blended: the colours at alpha 0.5 blended over without depth writes "
+                 "(benchmarks/blend_workload.hpp)")
+      ->check(CLI::IsMember({"gouraud", "phong", "bilinear", "trilinear", "blended"}))
       ->capture_default_str();
   app.add_option("--write-png", o.write_png,
                  "write llvmpipe's image of the capture (top row first, like tessera-render); "

@@ -30,6 +30,7 @@
 #include <tuple>
 #include <vector>
 
+#include "benchmarks/blend_workload.hpp"
 #include "benchmarks/frame_times.hpp"
 #include "benchmarks/phong_workload.hpp"
 #include "benchmarks/texture_workload.hpp"
@@ -85,7 +86,8 @@ void set_frame_counters(benchmark::State& state, double median_ms, double triang
 // shading "gouraud" draws the capture's colours; "phong" its Phong variant
 // (benchmarks/phong_workload.hpp); "user" the capture's colours through a user fragment
 // shader that copies them (FragmentShader::kUser); "bilinear" and "trilinear" its textured
-// variant (benchmarks/texture_workload.hpp).
+// variant (benchmarks/texture_workload.hpp); "blended" its colours at alpha 0.5 blended over
+// without depth writes (benchmarks/blend_workload.hpp).
 void BM_Workload(benchmark::State& state, std::string name, std::string shading,
                  tessera::SimdTarget target, std::string target_name, bool best, uint32_t threads,
                  uint32_t samples, bool color) {
@@ -105,10 +107,12 @@ void BM_Workload(benchmark::State& state, std::string name, std::string shading,
   tessera::Framebuffer fb({capture->width, capture->height, samples, tessera::ColorFormat::kRGBA8});
   const bool phong = shading == "phong";
   const bool textured = shading == "bilinear" || shading == "trilinear";
+  const bool blended = shading == "blended";
   tessera::PipelineState pipeline =
       phong      ? tessera::bench::phong_pipeline()
       : textured ? tessera::bench::textured_pipeline(tessera::bench::benchmark_texture(),
                                                      shading == "trilinear")
+      : blended  ? tessera::bench::blended_pipeline()
                  : tessera::capture_pipeline();
   pipeline.color_write = color;
   if (shading == "user") {
@@ -125,10 +129,11 @@ void BM_Workload(benchmark::State& state, std::string name, std::string shading,
   }
   const std::vector<float> varyings = phong      ? tessera::bench::phong_varyings(*capture)
                                       : textured ? tessera::bench::textured_varyings(*capture)
+                                      : blended  ? tessera::bench::blended_varyings(*capture)
                                                  : std::vector<float>{};
   tessera::DrawInput input;
   input.positions = capture->positions;
-  input.attributes = phong || textured ? varyings : capture->varyings;
+  input.attributes = phong || textured || blended ? varyings : capture->varyings;
   input.attribute_count = phong      ? tessera::bench::kPhongVaryings
                           : textured ? tessera::bench::kTexturedVaryings
                                      : 4;
@@ -291,14 +296,19 @@ void register_all() {
     }
   }
   // Gouraud at one and four samples, colour and depth only; Phong (colour) at one sample; the
-  // textured variants (colour, one sample) of the grid and medium.
+  // textured variants (colour, one sample) of the grid and medium; the blended variants
+  // (colour, one sample) of small and medium.
   for (const char* w : workloads) {
-    for (const char* shading : {"gouraud", "phong", "user", "bilinear", "trilinear"}) {
+    for (const char* shading : {"gouraud", "phong", "user", "bilinear", "trilinear", "blended"}) {
       const bool gouraud = std::string(shading) == "gouraud";
       const bool user = std::string(shading) == "user";
       const bool textured =
           std::string(shading) == "bilinear" || std::string(shading) == "trilinear";
       if (textured && std::string(w) != "grid" && std::string(w) != "medium") continue;
+      if (std::string(shading) == "blended" && std::string(w) != "small" &&
+          std::string(w) != "medium") {
+        continue;
+      }
       std::string suffix;  // built by appending: GCC 12 warns falsely on "/" + std::string
       if (!gouraud) suffix.append("/").append(shading);
       for (uint32_t samples : {1u, 4u}) {

@@ -132,6 +132,28 @@ constexpr std::pair<std::string_view, TargetOutput> kOutputNames[] = {
 constexpr std::pair<std::string_view, tessera::OcclusionMode> kOcclusionModeNames[] = {
     {"conservative", tessera::OcclusionMode::kConservative},
     {"exact", tessera::OcclusionMode::kExact}};
+constexpr std::pair<std::string_view, tessera::BlendFactor> kBlendFactorNames[] = {
+    {"zero", tessera::BlendFactor::kZero},
+    {"one", tessera::BlendFactor::kOne},
+    {"src_color", tessera::BlendFactor::kSrcColor},
+    {"one_minus_src_color", tessera::BlendFactor::kOneMinusSrcColor},
+    {"dst_color", tessera::BlendFactor::kDstColor},
+    {"one_minus_dst_color", tessera::BlendFactor::kOneMinusDstColor},
+    {"src_alpha", tessera::BlendFactor::kSrcAlpha},
+    {"one_minus_src_alpha", tessera::BlendFactor::kOneMinusSrcAlpha},
+    {"dst_alpha", tessera::BlendFactor::kDstAlpha},
+    {"one_minus_dst_alpha", tessera::BlendFactor::kOneMinusDstAlpha},
+    {"constant_color", tessera::BlendFactor::kConstantColor},
+    {"one_minus_constant_color", tessera::BlendFactor::kOneMinusConstantColor},
+    {"constant_alpha", tessera::BlendFactor::kConstantAlpha},
+    {"one_minus_constant_alpha", tessera::BlendFactor::kOneMinusConstantAlpha},
+    {"src_alpha_saturate", tessera::BlendFactor::kSrcAlphaSaturate}};
+constexpr std::pair<std::string_view, tessera::BlendOp> kBlendOpNames[] = {
+    {"add", tessera::BlendOp::kAdd},
+    {"subtract", tessera::BlendOp::kSubtract},
+    {"reverse_subtract", tessera::BlendOp::kReverseSubtract},
+    {"min", tessera::BlendOp::kMin},
+    {"max", tessera::BlendOp::kMax}};
 constexpr std::pair<std::string_view, LightKind> kLightKindNames[] = {
     {"directional", LightKind::kDirectional},
     {"point", LightKind::kPoint},
@@ -468,6 +490,40 @@ PYBIND11_MODULE(tessera, m) {
           },
           "The lights (a list of up to 8 Light); assigning a list replaces them.");
 
+  py::class_<tessera::BlendState> blend(
+      m, "Blend",
+      "Blend state of colour target 0 (tessera::BlendState): factor and op names as OpenGL's, "
+      "lower case (\"src_alpha\", \"one_minus_src_alpha\", ...; ops \"add\", "
+      "\"subtract\", \"reverse_subtract\", \"min\", \"max\"); write_mask bits 1 R, 2 G, 4 "
+      "B, 8 A.");
+  blend.def(py::init(&from_kwargs<tessera::BlendState>))
+      .def_readwrite("enable", &tessera::BlendState::enable)
+      .def_property(
+          "write_mask", [](const tessera::BlendState& self) { return self.write_mask; },
+          [](tessera::BlendState& self, uint32_t mask) {
+            if (mask > tessera::kWriteAll) {
+              throw py::value_error("write_mask " + std::to_string(mask) +
+                                    " has bits beyond the four channels (0..15)");
+            }
+            self.write_mask = static_cast<uint8_t>(mask);
+          })
+      .def_static("over", &tessera::BlendState::over,
+                  "(src_alpha, one_minus_src_alpha); alpha (one, one_minus_src_alpha)")
+      .def_static("additive", &tessera::BlendState::additive, "(one, one)")
+      .def_static("multiply", &tessera::BlendState::multiply, "(dst_color, zero)")
+      .def_static("premultiplied_over", &tessera::BlendState::premultiplied_over,
+                  "(one, one_minus_src_alpha)");
+  def_enum<tessera::BlendFactor>(blend, "src_color", &tessera::BlendState::src_color,
+                                 kBlendFactorNames);
+  def_enum<tessera::BlendFactor>(blend, "dst_color", &tessera::BlendState::dst_color,
+                                 kBlendFactorNames);
+  def_enum<tessera::BlendOp>(blend, "color_op", &tessera::BlendState::color_op, kBlendOpNames);
+  def_enum<tessera::BlendFactor>(blend, "src_alpha", &tessera::BlendState::src_alpha,
+                                 kBlendFactorNames);
+  def_enum<tessera::BlendFactor>(blend, "dst_alpha", &tessera::BlendState::dst_alpha,
+                                 kBlendFactorNames);
+  def_enum<tessera::BlendOp>(blend, "alpha_op", &tessera::BlendState::alpha_op, kBlendOpNames);
+
   py::class_<PipelineState> pipeline(m, "Pipeline",
                                      "Everything about a draw that is not its vertex data; "
                                      "keyword arguments set the attributes of the same names.");
@@ -480,6 +536,11 @@ PYBIND11_MODULE(tessera, m) {
       .def_readwrite("roles", &PipelineState::roles)
       .def_readwrite("phong", &PipelineState::phong)
       .def_readwrite("object_id", &PipelineState::object_id)
+      .def_readwrite("blend_constant", &PipelineState::blend_constant)
+      .def_property(
+          "blend", [](const PipelineState& self) { return self.blend[0]; },
+          [](PipelineState& self, const tessera::BlendState& b) { self.blend[0] = b; },
+          "Colour target 0's Blend (a copy: assign a Blend to change it).")
       .def_property(
           "varying_modes",
           [](const PipelineState& self) {

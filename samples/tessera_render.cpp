@@ -44,6 +44,8 @@ struct Options {
   float fov = 40.0f;
   bool ortho = false;
   bool no_depth = false;
+  bool no_depth_write = false;
+  std::string blend = "none";
   bool affine = false;
   bool float_color = false;
   std::string cull = "none";
@@ -445,6 +447,12 @@ int run(const Options& o, const CLI::App& app) {
     }
   }
   pipeline.depth_test = !o.no_depth;
+  pipeline.depth_write = !o.no_depth_write;
+  pipeline.blend[0] = o.blend == "over"            ? tessera::BlendState::over()
+                      : o.blend == "add"           ? tessera::BlendState::additive()
+                      : o.blend == "multiply"      ? tessera::BlendState::multiply()
+                      : o.blend == "premultiplied" ? tessera::BlendState::premultiplied_over()
+                                                   : tessera::BlendState{};
   if (o.reversed_z) pipeline.depth_compare = tessera::CompareOp::kGreater;
   pipeline.subpixel_bits = o.subpixel_bits;
   pipeline.interpolation =
@@ -664,6 +672,14 @@ int main(int argc, char** argv) {
   app.add_option("--cull", o.cull, "face culling")
       ->check(CLI::IsMember({"back", "front", "none"}))
       ->capture_default_str();
+  app.add_option("--blend", o.blend,
+                 "colour blending (OpenGL factors): over (SRC_ALPHA, ONE_MINUS_SRC_ALPHA; alpha "
+                 "ONE, ONE_MINUS_SRC_ALPHA), add (ONE, ONE), multiply (DST_COLOR, ZERO), "
+                 "premultiplied (ONE, ONE_MINUS_SRC_ALPHA)")
+      ->check(CLI::IsMember({"none", "over", "add", "multiply", "premultiplied"}))
+      ->capture_default_str();
+  app.add_flag("--no-depth-write", o.no_depth_write,
+               "test depth without writing it (the usual state for transparent geometry)");
   app.add_flag("--affine", o.affine, "affine (screen-linear) attribute interpolation");
   app.add_flag("--wireframe", o.wireframe,
                "draw triangle edges as lines, hidden lines removed by the depth buffer");

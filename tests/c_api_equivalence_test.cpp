@@ -6,9 +6,11 @@
 // path) are tests/c_api_test.c.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <ostream>
 #include <string>
@@ -218,6 +220,36 @@ TEST_P(CApiEquivalence, TheSameSceneGivesTheSameBytesThroughBothApis) {
             TESSERA_OK)
       << tessera_last_error_message();
   renderer.draw(fb, pipeline, grid.cpp());
+
+  // The soup again, blended: constant colour against one minus source colour, alpha
+  // reverse-subtracted, green not written.
+  ASSERT_EQ(tessera_pipeline_state_init(&c_pipeline), TESSERA_OK);
+  c_pipeline.depth_test = false;
+  c_pipeline.blend[0] = {true,
+                         TESSERA_BLEND_CONSTANT_COLOR,
+                         TESSERA_BLEND_ONE_MINUS_SRC_COLOR,
+                         TESSERA_BLEND_OP_ADD,
+                         TESSERA_BLEND_SRC_ALPHA_SATURATE,
+                         TESSERA_BLEND_DST_ALPHA,
+                         TESSERA_BLEND_OP_REVERSE_SUBTRACT,
+                         TESSERA_WRITE_RED | TESSERA_WRITE_BLUE | TESSERA_WRITE_ALPHA};
+  const float constant[4] = {0.3f, 0.6f, 0.9f, 0.5f};
+  std::copy(constant, constant + 4, c_pipeline.blend_constant);
+  pipeline = {};
+  pipeline.depth_test = false;
+  pipeline.blend[0] = {true,
+                       tessera::BlendFactor::kConstantColor,
+                       tessera::BlendFactor::kOneMinusSrcColor,
+                       tessera::BlendOp::kAdd,
+                       tessera::BlendFactor::kSrcAlphaSaturate,
+                       tessera::BlendFactor::kDstAlpha,
+                       tessera::BlendOp::kReverseSubtract,
+                       tessera::kWriteRed | tessera::kWriteBlue | tessera::kWriteAlpha};
+  pipeline.blend_constant = {0.3f, 0.6f, 0.9f, 0.5f};
+  ASSERT_EQ(tessera_draw_triangles(c_renderer.handle, c_fb.handle, &c_pipeline, &c_soup),
+            TESSERA_OK)
+      << tessera_last_error_message();
+  renderer.draw(fb, pipeline, soup.cpp());
 
   // Points, square then round, depth test off, colour from varyings 0..3.
   const Mesh dots = random_mesh(11, 40, 4);
@@ -520,6 +552,14 @@ TEST(CApi, ErrorsAreTheCppApisErrors) {
        [](tessera::PipelineState& s) {
          s.shader = tessera::FragmentShader::kPhong;
          s.phong.light_count = 9;
+       }},
+      {"an extra target blending", TESSERA_BACKEND_FAST,
+       [](tessera_pipeline_state& s) { s.blend[2].enable = true; },
+       [](tessera::PipelineState& s) { s.blend[2].enable = true; }},
+      {"a blend constant of infinity", TESSERA_BACKEND_REFERENCE,
+       [](tessera_pipeline_state& s) { s.blend_constant[1] = INFINITY; },
+       [](tessera::PipelineState& s) {
+         s.blend_constant[1] = std::numeric_limits<float>::infinity();
        }},
       {"roles past the varyings", TESSERA_BACKEND_REFERENCE,
        [](tessera_pipeline_state& s) {

@@ -131,6 +131,34 @@ TEST(Cli, CaptureRendersAtItsOwnSizeInItsColours) {
   }
 }
 
+TEST(Cli, BlendOptionsBlendWithTheirOpenGLFactors) {
+  // A triangle of (1, 0.5, 0, 0.5) over the clear colour (0.2, 0.4, 0.6, 1), stored as bytes
+  // (51, 102, 153, 255).
+  TempDir dir;
+  write_filled_capture(dir / "half.tri", 8, 6, {1.0f, 0.5f, 0.0f, 0.5f});
+  struct Case {
+    const char* blend;
+    std::array<int, 3> rgb;
+  };
+  // over: 0.5 s + 0.5 d; add: s + d; multiply: s d; premultiplied: s + 0.5 d.
+  const Case cases[] = {{"over", {153, 115, 77}},
+                        {"add", {255, 230, 153}},
+                        {"multiply", {51, 51, 0}},
+                        {"premultiplied", {255, 179, 77}}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.blend);
+    const RunResult r =
+        run_render(dir, quoted(dir / "half.tri") + " --clear 0.2,0.4,0.6,1 --no-depth-write" +
+                            " --blend " + c.blend + " -o " + quoted(dir / "blend.png"));
+    ASSERT_TRUE(r.exited);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Image image = read_image(dir / "blend.png");
+    ASSERT_EQ(image.width, 8);
+    for (int ch = 0; ch < 3; ++ch)
+      EXPECT_EQ(std::lround(image.at(3, 2)[ch] * 255.0f), c.rgb[ch]) << ch;
+  }
+}
+
 // A TRI2 capture of one screen-filling triangle with Phong's ten varyings: an eye-space normal
 // (0, 0, 1), the eye-space position of a plane at z = -2 (x, y from -2 to 6), a white base
 // colour.

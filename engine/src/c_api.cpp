@@ -94,6 +94,22 @@ static_assert(same(TESSERA_COMPARE_NEVER, tessera::CompareOp::kNever) &&
               same(TESSERA_COMPARE_NOT_EQUAL, tessera::CompareOp::kNotEqual) &&
               same(TESSERA_COMPARE_GREATER_EQUAL, tessera::CompareOp::kGreaterEqual) &&
               same(TESSERA_COMPARE_ALWAYS, tessera::CompareOp::kAlways));
+static_assert(same(TESSERA_BLEND_ZERO, tessera::BlendFactor::kZero) &&
+              same(TESSERA_BLEND_ONE_MINUS_DST_COLOR, tessera::BlendFactor::kOneMinusDstColor) &&
+              same(TESSERA_BLEND_ONE_MINUS_DST_ALPHA, tessera::BlendFactor::kOneMinusDstAlpha) &&
+              same(TESSERA_BLEND_ONE_MINUS_CONSTANT_ALPHA,
+                   tessera::BlendFactor::kOneMinusConstantAlpha) &&
+              same(TESSERA_BLEND_SRC_ALPHA_SATURATE, tessera::BlendFactor::kSrcAlphaSaturate));
+static_assert(same(TESSERA_BLEND_OP_ADD, tessera::BlendOp::kAdd) &&
+              same(TESSERA_BLEND_OP_SUBTRACT, tessera::BlendOp::kSubtract) &&
+              same(TESSERA_BLEND_OP_REVERSE_SUBTRACT, tessera::BlendOp::kReverseSubtract) &&
+              same(TESSERA_BLEND_OP_MIN, tessera::BlendOp::kMin) &&
+              same(TESSERA_BLEND_OP_MAX, tessera::BlendOp::kMax));
+static_assert(TESSERA_WRITE_RED == tessera::kWriteRed &&
+              TESSERA_WRITE_GREEN == tessera::kWriteGreen &&
+              TESSERA_WRITE_BLUE == tessera::kWriteBlue &&
+              TESSERA_WRITE_ALPHA == tessera::kWriteAlpha &&
+              TESSERA_WRITE_ALL == tessera::kWriteAll);
 static_assert(same(TESSERA_CULL_NONE, tessera::CullMode::kNone) &&
               same(TESSERA_CULL_FRONT, tessera::CullMode::kFront) &&
               same(TESSERA_CULL_BACK, tessera::CullMode::kBack));
@@ -273,6 +289,25 @@ tessera::PipelineState to_cpp(const tessera_pipeline_state& c) {
         c.extra_outputs[t], [t] { return "pipeline extra_outputs[" + std::to_string(t) + "]"; });
   }
   p.roles = {c.roles.color, c.roles.normal, c.roles.position, c.roles.texcoord};
+  for (uint32_t t = 0; t < tessera::kMaxColorTargets; ++t) {
+    const tessera_blend_state& from = c.blend[t];
+    tessera::BlendState& to = p.blend[t];
+    const std::string name = "pipeline blend[" + std::to_string(t) + "].";
+    to.enable = from.enable;
+    to.src_color = to_cpp_enum<tessera::BlendFactor>(from.src_color, name + "src_color");
+    to.dst_color = to_cpp_enum<tessera::BlendFactor>(from.dst_color, name + "dst_color");
+    to.color_op = to_cpp_enum<tessera::BlendOp>(from.color_op, name + "color_op");
+    to.src_alpha = to_cpp_enum<tessera::BlendFactor>(from.src_alpha, name + "src_alpha");
+    to.dst_alpha = to_cpp_enum<tessera::BlendFactor>(from.dst_alpha, name + "dst_alpha");
+    to.alpha_op = to_cpp_enum<tessera::BlendOp>(from.alpha_op, name + "alpha_op");
+    if (from.write_mask > tessera::kWriteAll) {
+      throw tessera::Error(tessera::ErrorCode::kInvalidArgument,
+                           name + "write_mask " + std::to_string(from.write_mask) +
+                               " has bits beyond the four channels (0..15)");
+    }
+    to.write_mask = static_cast<uint8_t>(from.write_mask);
+  }
+  std::copy(c.blend_constant, c.blend_constant + 4, p.blend_constant.begin());
   if (c.texture != nullptr) p.texture = c.texture->texture;
   tessera::Sampler& sampler = p.sampler;
   sampler.mag_filter =
@@ -350,6 +385,18 @@ tessera_pipeline_state to_c(const tessera::PipelineState& p) {
   for (uint32_t t = 0; t + 1 < tessera::kMaxColorTargets; ++t)
     c.extra_outputs[t] = to_c_enum<tessera_target_output>(p.extra_outputs[t]);
   c.roles = {p.roles.color, p.roles.normal, p.roles.position, p.roles.texcoord};
+  for (uint32_t t = 0; t < tessera::kMaxColorTargets; ++t) {
+    const tessera::BlendState& from = p.blend[t];
+    c.blend[t] = {from.enable,
+                  to_c_enum<tessera_blend_factor>(from.src_color),
+                  to_c_enum<tessera_blend_factor>(from.dst_color),
+                  to_c_enum<tessera_blend_op>(from.color_op),
+                  to_c_enum<tessera_blend_factor>(from.src_alpha),
+                  to_c_enum<tessera_blend_factor>(from.dst_alpha),
+                  to_c_enum<tessera_blend_op>(from.alpha_op),
+                  from.write_mask};
+  }
+  std::copy(p.blend_constant.begin(), p.blend_constant.end(), c.blend_constant);
   c.texture = nullptr;  // a C++ pipeline's texture has no C handle
   c.sampler.mag_filter = to_c_enum<tessera_filter>(p.sampler.mag_filter);
   c.sampler.min_filter = to_c_enum<tessera_filter>(p.sampler.min_filter);

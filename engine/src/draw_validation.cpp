@@ -77,6 +77,38 @@ bool all_finite(std::span<const Float4> positions, tbb::task_arena* arena = null
   return all_finite(std::span<const float>(&positions.data()->x, positions.size() * 4), arena);
 }
 
+// The blend state: enums in range, a write mask of four bits, a finite constant, and only
+// target 0 blending or masking channels.
+void validate_blend(const PipelineState& pipeline) {
+  for (uint32_t t = 0; t < kMaxColorTargets; ++t) {
+    const BlendState& b = pipeline.blend[t];
+    const std::string name = "blend[" + std::to_string(t) + "].";
+    check_enum(b.src_color, BlendFactor::kSrcAlphaSaturate, (name + "src_color").c_str());
+    check_enum(b.dst_color, BlendFactor::kSrcAlphaSaturate, (name + "dst_color").c_str());
+    check_enum(b.src_alpha, BlendFactor::kSrcAlphaSaturate, (name + "src_alpha").c_str());
+    check_enum(b.dst_alpha, BlendFactor::kSrcAlphaSaturate, (name + "dst_alpha").c_str());
+    check_enum(b.color_op, BlendOp::kMax, (name + "color_op").c_str());
+    check_enum(b.alpha_op, BlendOp::kMax, (name + "alpha_op").c_str());
+    if (b.write_mask > kWriteAll) {
+      fail(ErrorCode::kInvalidArgument, "pipeline " + name + "write_mask " +
+                                            std::to_string(b.write_mask) +
+                                            " has bits beyond the four channels (0..15)");
+    }
+    if (t > 0 && !b.replaces()) {
+      fail(ErrorCode::kInvalidArgument,
+           "pipeline blend[" + std::to_string(t) +
+               "] blends or masks channels: only colour target 0 blends; the extra targets "
+               "take BlendState{}");
+    }
+  }
+  for (int c = 0; c < 4; ++c) {
+    if (!std::isfinite(pipeline.blend_constant[c])) {
+      fail(ErrorCode::kInvalidArgument,
+           "pipeline blend_constant[" + std::to_string(c) + "] is not finite");
+    }
+  }
+}
+
 }  // namespace
 
 void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
@@ -86,6 +118,7 @@ void validate_vertices(const Framebuffer& target, const PipelineState& pipeline,
   check_enum(pipeline.front_face, FrontFace::kClockwise, "front_face");
   check_enum(pipeline.clip_depth, ClipDepth::kNegativeOneToOne, "clip_depth");
   check_enum(pipeline.interpolation, Interpolation::kAffine, "interpolation");
+  validate_blend(pipeline);
   if (pipeline.samples != 0 && pipeline.samples != target.samples()) {
     fail(ErrorCode::kInvalidArgument, "pipeline sample count " + std::to_string(pipeline.samples) +
                                           " does not match the framebuffer's " +

@@ -35,6 +35,90 @@ enum class ClipDepth { kZeroToOne, kNegativeOneToOne };
 // per varying.
 enum class Interpolation { kPerspective, kAffine };
 
+// Blending (OpenGL 4.6 section 17.3.6, Vulkan's VkBlendFactor and VkBlendOp): a colour target's
+// stored value becomes op(src * src_factor, dst * dst_factor), per channel, with separate
+// factors and op for alpha. kMin and kMax ignore the factors. kSrcAlphaSaturate is
+// min(src alpha, 1 - dst alpha) for R, G and B and 1 for alpha.
+enum class BlendFactor {
+  kZero,
+  kOne,
+  kSrcColor,
+  kOneMinusSrcColor,
+  kDstColor,
+  kOneMinusDstColor,
+  kSrcAlpha,
+  kOneMinusSrcAlpha,
+  kDstAlpha,
+  kOneMinusDstAlpha,
+  kConstantColor,
+  kOneMinusConstantColor,
+  kConstantAlpha,
+  kOneMinusConstantAlpha,
+  kSrcAlphaSaturate
+};
+enum class BlendOp { kAdd, kSubtract, kReverseSubtract, kMin, kMax };
+
+// Bits of BlendState::write_mask.
+inline constexpr uint8_t kWriteRed = 1, kWriteGreen = 2, kWriteBlue = 4, kWriteAlpha = 8;
+inline constexpr uint8_t kWriteAll = 0xF;
+
+// One colour target's blend state. RGBA8 targets blend as a unorm8 GPU does: source, constant
+// and destination (byte / 255) as floats in [0, 1] (source and constant clamped), the
+// equation in float, the result clamped to [0, 1] and rounded to nearest (to_unorm8). Float
+// targets blend in float with nothing clamped. Channels outside write_mask keep their stored
+// value, blending or not.
+struct BlendState {
+  bool enable = false;
+  BlendFactor src_color = BlendFactor::kOne;
+  BlendFactor dst_color = BlendFactor::kZero;
+  BlendOp color_op = BlendOp::kAdd;
+  BlendFactor src_alpha = BlendFactor::kOne;
+  BlendFactor dst_alpha = BlendFactor::kZero;
+  BlendOp alpha_op = BlendOp::kAdd;
+  uint8_t write_mask = kWriteAll;
+
+  // Whether a draw with this state stores its colour as it is (no blend, every channel).
+  bool replaces() const { return !enable && write_mask == kWriteAll; }
+
+  // The usual states: OpenGL's (SRC_ALPHA, ONE_MINUS_SRC_ALPHA) for colour and (ONE,
+  // ONE_MINUS_SRC_ALPHA) for alpha; (ONE, ONE); (DST_COLOR, ZERO); (ONE,
+  // ONE_MINUS_SRC_ALPHA) for both.
+  static BlendState over();
+  static BlendState additive();
+  static BlendState multiply();
+  static BlendState premultiplied_over();
+};
+
+inline BlendState BlendState::over() {
+  BlendState b;
+  b.enable = true;
+  b.src_color = BlendFactor::kSrcAlpha;
+  b.dst_color = BlendFactor::kOneMinusSrcAlpha;
+  b.src_alpha = BlendFactor::kOne;
+  b.dst_alpha = BlendFactor::kOneMinusSrcAlpha;
+  return b;
+}
+inline BlendState BlendState::additive() {
+  BlendState b;
+  b.enable = true;
+  b.src_color = b.dst_color = b.src_alpha = b.dst_alpha = BlendFactor::kOne;
+  return b;
+}
+inline BlendState BlendState::multiply() {
+  BlendState b;
+  b.enable = true;
+  b.src_color = b.src_alpha = BlendFactor::kDstColor;
+  b.dst_color = b.dst_alpha = BlendFactor::kZero;
+  return b;
+}
+inline BlendState BlendState::premultiplied_over() {
+  BlendState b;
+  b.enable = true;
+  b.src_color = b.src_alpha = BlendFactor::kOne;
+  b.dst_color = b.dst_alpha = BlendFactor::kOneMinusSrcAlpha;
+  return b;
+}
+
 inline constexpr uint32_t kMinSubpixelBits = 4;
 inline constexpr uint32_t kMaxSubpixelBits = 8;
 
@@ -45,6 +129,10 @@ struct PipelineState {
   CompareOp depth_compare = CompareOp::kLess;
 
   bool color_write = true;
+  // Blending and write masks per colour target (target 0, then the extra targets). Blending
+  // applies to target 0; an extra target takes only BlendState{} (Error otherwise).
+  std::array<BlendState, kMaxColorTargets> blend{};
+  std::array<float, 4> blend_constant{0.0f, 0.0f, 0.0f, 0.0f};  // kConstantColor, kConstantAlpha
 
   CullMode cull = CullMode::kNone;
   FrontFace front_face = FrontFace::kCounterClockwise;

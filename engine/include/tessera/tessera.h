@@ -409,6 +409,52 @@ typedef struct tessera_phong_state {
   tessera_light lights[TESSERA_MAX_LIGHTS];
 } tessera_phong_state;
 
+/* Blending (tessera::BlendState): a colour target's value becomes op(src * src_factor,
+ * dst * dst_factor) per channel, OpenGL's and Vulkan's factors and operations. */
+typedef enum tessera_blend_factor {
+  TESSERA_BLEND_ZERO = 0,
+  TESSERA_BLEND_ONE = 1,
+  TESSERA_BLEND_SRC_COLOR = 2,
+  TESSERA_BLEND_ONE_MINUS_SRC_COLOR = 3,
+  TESSERA_BLEND_DST_COLOR = 4,
+  TESSERA_BLEND_ONE_MINUS_DST_COLOR = 5,
+  TESSERA_BLEND_SRC_ALPHA = 6,
+  TESSERA_BLEND_ONE_MINUS_SRC_ALPHA = 7,
+  TESSERA_BLEND_DST_ALPHA = 8,
+  TESSERA_BLEND_ONE_MINUS_DST_ALPHA = 9,
+  TESSERA_BLEND_CONSTANT_COLOR = 10,
+  TESSERA_BLEND_ONE_MINUS_CONSTANT_COLOR = 11,
+  TESSERA_BLEND_CONSTANT_ALPHA = 12,
+  TESSERA_BLEND_ONE_MINUS_CONSTANT_ALPHA = 13,
+  TESSERA_BLEND_SRC_ALPHA_SATURATE = 14,
+  TESSERA_BLEND_FACTOR_MAX_ENUM = 0x7FFFFFFF
+} tessera_blend_factor;
+
+typedef enum tessera_blend_op {
+  TESSERA_BLEND_OP_ADD = 0,
+  TESSERA_BLEND_OP_SUBTRACT = 1,
+  TESSERA_BLEND_OP_REVERSE_SUBTRACT = 2,
+  TESSERA_BLEND_OP_MIN = 3,
+  TESSERA_BLEND_OP_MAX = 4,
+  TESSERA_BLEND_OP_MAX_ENUM = 0x7FFFFFFF
+} tessera_blend_op;
+
+/* write_mask bits */
+#define TESSERA_WRITE_RED 1u
+#define TESSERA_WRITE_GREEN 2u
+#define TESSERA_WRITE_BLUE 4u
+#define TESSERA_WRITE_ALPHA 8u
+#define TESSERA_WRITE_ALL 15u
+
+typedef struct tessera_blend_state {
+  bool enable;
+  tessera_blend_factor src_color, dst_color;
+  tessera_blend_op color_op;
+  tessera_blend_factor src_alpha, dst_alpha;
+  tessera_blend_op alpha_op;
+  uint32_t write_mask; /* TESSERA_WRITE_* bits; the channels left out keep their value */
+} tessera_blend_state;
+
 /* tessera::PipelineState: everything about a draw but its vertex data. Fill it with
  * tessera_pipeline_state_init (the C++ defaults: depth test and write on with LESS, colour
  * write on, no culling, counter-clockwise front faces, perspective-correct Gouraud colour from
@@ -438,6 +484,9 @@ typedef struct tessera_pipeline_state {
   /* TESSERA_SHADER_TEXTURED: the texture (read during the draw only) and its sampler. */
   const tessera_texture* texture;
   tessera_sampler sampler;
+  /* Per colour target: target 0 blends; the extra targets keep the init values. */
+  tessera_blend_state blend[TESSERA_MAX_COLOR_TARGETS];
+  float blend_constant[4]; /* CONSTANT_COLOR and CONSTANT_ALPHA */
 } tessera_pipeline_state;
 
 TESSERA_API tessera_result tessera_pipeline_state_init(tessera_pipeline_state* state);

@@ -44,6 +44,8 @@
 
 #include <hwy/highway.h>
 
+#include "engine/src/blend/blend-inl.h"
+#include "engine/src/blend/blend.hpp"
 #include "engine/src/fast/hiz-inl.h"
 #include "engine/src/fast/unorm8-inl.h"
 #include "engine/src/shade/shade-inl.h"
@@ -299,12 +301,69 @@ inline void triangle_hiz_range(const TileContext& tc, const TriangleSetup& t, fl
   hiz_range(tc, t.z_min - margin, t.z_max + margin, lo, hi);
 }
 
+// RGBA lanes blended into RGBA8 lanes `old` under tc.blend (blend.hpp's blend and write mask,
+// the same operations): the packed lanes to store. Out of line: one copy serves every path and
+// blend state, and draws that do not blend never reach it.
+template <class DF, class VF>
+HWY_NOINLINE hn::Vec<hn::RebindToUnsigned<DF>> blend_packed(DF df, const TileContext& tc,
+                                                            hn::Vec<hn::RebindToUnsigned<DF>> old,
+                                                            VF r, VF g, VF b, VF a) {
+  const hn::RebindToUnsigned<DF> du;
+  const hn::RebindToSigned<DF> di;
+  const auto byte = hn::Set(du, 0xFFu);
+  const auto unpack = [&](auto bits) {
+    return hn::Div(hn::ConvertTo(df, hn::BitCast(di, hn::And(bits, byte))), hn::Set(df, 255.0f));
+  };
+  blend::HWY_NAMESPACE::blend(df, *tc.blend, tc.blend_constant.data(), true, r, g, b, a,
+                              unpack(old), unpack(hn::ShiftRight<8>(old)),
+                              unpack(hn::ShiftRight<16>(old)), unpack(hn::ShiftRight<24>(old)));
+  const auto packed = pack_unorm8<true>(df, r, g, b, a);
+  uint32_t keep = 0;  // the bytes of channels outside the write mask
+  for (int c = 0; c < 4; ++c)
+    if (!(tc.blend->write_mask & (1u << c))) keep |= 0xFFu << (8 * c);
+  if (keep == 0) return packed;
+  return hn::Or(hn::AndNot(hn::Set(du, keep), packed), hn::And(hn::Set(du, keep), old));
+}
+
+// RGBA lanes blended under tc.blend into the RGBA32F values at `dst` (interleaved, a whole
+// vector of pixels) where m is set.
+template <class DF, class MF, class VF>
+HWY_NOINLINE void blend_rgba32f(DF df, const TileContext& tc, float* HWY_RESTRICT dst, MF m, VF r,
+                                VF g, VF b, VF a) {
+  VF r0, g0, b0, a0;
+  hn::LoadInterleaved4(df, dst, r0, g0, b0, a0);
+  blend::HWY_NAMESPACE::blend(df, *tc.blend, tc.blend_constant.data(), false, r, g, b, a, r0, g0,
+                              b0, a0);
+  const uint8_t mask = tc.blend->write_mask;
+  const auto pick = [&](int c, VF v, VF stored) {
+    return (mask & (1u << c)) ? hn::IfThenElse(m, v, stored) : stored;
+  };
+  hn::StoreInterleaved4(pick(0, r, r0), pick(1, g, g0), pick(2, b, b0), pick(3, a, a0), df, dst);
+}
+
 // The colour write of lane group i of block `block`: RGBA lanes to the samples that passed
-// (passed(s); one sample: `any`), packed to RGBA8 (kClamp as pack_unorm8's) or stored as floats.
+// (passed(s); one sample: `any`), packed to RGBA8 (kClamp as pack_unorm8's) or stored as floats,
+// or blended where the draw blends (tc.blend).
 template <ColorMode kColor, bool kMulti, bool kClamp, class DF, class VF, class MU, class Passed>
 HWY_INLINE void store_colour(DF df, const TileContext& tc, size_t block, size_t i, uint32_t samples,
                              MU any, const Passed& passed, VF r, VF g, VF b, VF a) {
   const hn::RebindToUnsigned<DF> du;
+  if (tc.blend != nullptr) {
+    for (uint32_t s = 0; s < samples; ++s) {
+      const MU m = kMulti ? passed(s) : any;
+      if (hn::AllFalse(du, m)) continue;
+      if constexpr (kColor == ColorMode::kRGBA8) {
+        uint32_t* colour =
+            reinterpret_cast<uint32_t*>(tc.rgba8) + block * 64 + s * kSamplePlane + i;
+        const auto old = hn::Load(du, colour);
+        store_masked(blend_packed(df, tc, old, r, g, b, a), m, du, colour, old);
+      } else {
+        blend_rgba32f(df, tc, tc.rgba32f + (block * 64 + s * kSamplePlane + i) * 4,
+                      hn::RebindMask(df, m), r, g, b, a);
+      }
+    }
+    return;
+  }
   if constexpr (kColor == ColorMode::kRGBA8) {
     const auto packed = pack_unorm8<kClamp>(df, r, g, b, a);
     uint32_t* colour = reinterpret_cast<uint32_t*>(tc.rgba8) + block * 64 + i;
@@ -1471,8 +1530,27 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       }
       // One sample, simple: the stored lanes, covered pixel centres, need no clamp
       // (packs_without_clamp).
-      const auto packed = pack_unorm8<!(kSimple && !kMulti)>(df, red, green, blue, alpha);
       uint32_t* const colour = reinterpret_cast<uint32_t*>(tc.rgba8);
+      if (tc.blend != nullptr) {
+        // Each lane blends with the value it replaces: block a's lanes' at at_a, block b's at
+        // at_b.
+        for (uint32_t s = 0; s < samples; ++s) {
+          const auto m = kMulti ? passed(s) : any;
+          if (hn::AllFalse(df, m)) continue;
+          uint32_t* const target = colour + s * kSamplePlane;
+          const auto old_a = hn::Load(du, target + at_a);
+          const auto old_b = two ? hn::Load(du, target + at_b) : old_a;
+          const auto old = two ? hn::IfThenElse(hn::RebindMask(du, in_a_f), old_a, old_b) : old_a;
+          const auto packed = blend_packed(df, tc, old, red, green, blue, alpha);
+          store_masked(packed, hn::RebindMask(du, two ? hn::And(m, in_a_f) : m), du, target + at_a,
+                       old_a);
+          if (two) {
+            store_masked(packed, hn::RebindMask(du, hn::And(m, in_b_f)), du, target + at_b, old_b);
+          }
+        }
+        continue;
+      }
+      const auto packed = pack_unorm8<!(kSimple && !kMulti)>(df, red, green, blue, alpha);
       for (uint32_t s = 0; s < samples; ++s) {
         const auto m = kMulti ? passed(s) : any;
         uint32_t* const target = colour + s * kSamplePlane;
@@ -1591,6 +1669,18 @@ HWY_INLINE void write_packed(const TileContext& tc, size_t index, uint32_t sampl
 template <ColorMode kColor>
 HWY_INLINE void write_pixel(const TileContext& tc, size_t index, uint32_t samples,
                             const float (&channel)[4]) {
+  if (tc.blend != nullptr) {
+    const blend::Rgba src = {channel[0], channel[1], channel[2], channel[3]};
+    for (uint32_t rest = samples; rest != 0; rest &= rest - 1) {
+      const size_t at = std::countr_zero(rest) * kSamplePlane + index;
+      if constexpr (kColor == ColorMode::kRGBA8) {
+        blend::write_rgba8(*tc.blend, tc.blend_constant, src, tc.rgba8 + at * 4);
+      } else {
+        blend::write_rgba32f(*tc.blend, tc.blend_constant, src, tc.rgba32f + at * 4);
+      }
+    }
+    return;
+  }
   if constexpr (kColor == ColorMode::kRGBA8) {
     write_packed(tc, index, samples, pack_rgba8(channel));
   } else {

@@ -76,6 +76,13 @@ struct TileContext {
   float* hiz_min = nullptr;  // per block of the tile
   float* hiz_max = nullptr;
 
+  // Colour target 0's blend state where it does not simply store the colour
+  // (BlendState::replaces() false: blending or a write mask), with the draw's blend constant;
+  // null otherwise. Drawn through the block and window paths and the per-pixel writer
+  // (write_pixel): no pixel or sample records, which hold packed colour.
+  const BlendState* blend = nullptr;
+  std::array<float, 4> blend_constant{};
+
   // A shaded draw's layout (shade/layout.hpp): its setups' planes are the floats from
   // planes + 3 * layout->count * (setup index). Null for a Gouraud draw.
   const shade::Layout* layout = nullptr;

@@ -170,7 +170,14 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   const size_t plane_stride = shaded ? size_t{3} * layout.count : 0;
   const TriangleKernel kernel =
       triangle_kernel(*st.kernels, layout.shader, depth, color, samples > 1, st.count);
-  const bool records = st.records && !shaded;
+  // A draw that blends or masks channels reads each sample's colour before it writes it: the
+  // paths that blend (records hold packed colour).
+  const BlendState& blending = pipeline.blend[0];
+  if (color != ColorMode::kOff && !blending.replaces()) {
+    draw.blend = &blending;
+    draw.blend_constant = pipeline.blend_constant;
+  }
+  const bool records = st.records && !shaded && draw.blend == nullptr;
   const PixelKernel pixels_kernel =
       records && samples == 1 ? pixel_kernel(*st.kernels, depth, color, st.count) : nullptr;
   const SampleKernel samples_kernel = records && (samples == 2 || samples == 4)

@@ -1,6 +1,6 @@
 // Fragment writes for the fast engine's per-pixel primitives (one-pixel and antialiased lines,
-// round points): depth test and write per sample, colour store or source-over blend, exactly
-// as the reference's fragment_write.cpp computes them (same operations, same bytes), with
+// round points): depth test and write per sample, colour store or blend (blend/blend.hpp),
+// exactly as the reference's fragment_write.cpp computes them (same operations, same bytes), with
 // the Hi-Z bounds of every block a fragment writes depth to marked stale.
 #pragma once
 
@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "engine/src/blend/blend.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
 #include "tessera/pipeline.hpp"
@@ -23,7 +24,8 @@ struct TileWriter {
   bool blend;
   Counters& counters;
   bool plain_rgba8 = fb.desc.samples == 1 && !pipeline.depth_test && !blend &&
-                     pipeline.color_write && fb.desc.color_format == ColorFormat::kRGBA8;
+                     pipeline.blend[0].replaces() && pipeline.color_write &&
+                     fb.desc.color_format == ColorFormat::kRGBA8;
 
   // Depth test and write for the samples of `mask`, then the colour store or blend. A sample's
   // depth is the plane depth_in + dz_dx x + dz_dy y at its offset from the pixel centre.
@@ -62,22 +64,17 @@ struct TileWriter {
       ++counters.samples_passed;
       any = true;
       if (!pipeline.color_write) continue;
-      std::array<float, 4> out = color;
       const bool rgba8 = fb.desc.color_format == ColorFormat::kRGBA8;
-      if (blend) {
-        const float a = std::clamp(color[3], 0.0f, 1.0f) * std::min(coverage, 1.0f);
-        std::array<float, 4> dst;
-        for (int c = 0; c < 4; ++c)
-          dst[c] = rgba8 ? fb.rgba8[index * 4 + c] / 255.0f : fb.rgba32f[index * 4 + c];
-        for (int c = 0; c < 3; ++c)
-          out[c] = color[c] * a + dst[c] * (1.0f - a);
-        out[3] = a + dst[3] * (1.0f - a);
+      if (blend::write_primitive_sample(pipeline, color, coverage, blend,
+                                        rgba8 ? fb.rgba8.data() + index * 4 : nullptr,
+                                        rgba8 ? nullptr : fb.rgba32f.data() + index * 4)) {
+        continue;
       }
       for (int c = 0; c < 4; ++c) {
         if (rgba8) {
-          fb.rgba8[index * 4 + c] = to_unorm8(out[c]);
+          fb.rgba8[index * 4 + c] = to_unorm8(color[c]);
         } else {
-          fb.rgba32f[index * 4 + c] = out[c];
+          fb.rgba32f[index * 4 + c] = color[c];
         }
       }
     }

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "engine/src/blend/blend.hpp"
 #include "engine/src/fast/block_kernel.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
@@ -244,7 +245,14 @@ void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float
         tc.depth[at] = z[s * 64 + i];
         wrote = true;
       }
-      if (tc.rgba8 != nullptr) {
+      if (tc.blend != nullptr) {
+        const blend::Rgba src = {colour[0], colour[1], colour[2], colour[3]};
+        if (tc.rgba8 != nullptr) {
+          blend::write_rgba8(*tc.blend, tc.blend_constant, src, tc.rgba8 + at * 4);
+        } else {
+          blend::write_rgba32f(*tc.blend, tc.blend_constant, src, tc.rgba32f + at * 4);
+        }
+      } else if (tc.rgba8 != nullptr) {
         std::copy_n(packed, 4, tc.rgba8 + at * 4);
       } else {
         std::copy_n(colour, 4, tc.rgba32f + at * 4);

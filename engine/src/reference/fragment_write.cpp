@@ -1,11 +1,13 @@
 // Depth test, depth write and colour store or blend of one fragment (fragment_write.hpp).
-// Blending follows OpenGL's SRC_ALPHA, ONE_MINUS_SRC_ALPHA for colour and ONE,
+// Blending (blend/blend.hpp): the pipeline's blend state, or for antialiased fragments under a
+// state that only stores, OpenGL's SRC_ALPHA, ONE_MINUS_SRC_ALPHA for colour and ONE,
 // ONE_MINUS_SRC_ALPHA for alpha (Porter and Duff 1984, "over"), computed in float and stored
 // as the colour buffer's format stores any colour (to_unorm8 for RGBA8).
 #include "engine/src/reference/fragment_write.hpp"
 
 #include <algorithm>
 
+#include "engine/src/blend/blend.hpp"
 #include "engine/src/sample_positions.hpp"
 
 namespace tessera::reference {
@@ -33,24 +35,18 @@ void write_fragment(detail::FramebufferStorage& fb, const PipelineState& pipelin
     ++counters.samples_passed;
     any = true;
     if (!pipeline.color_write) continue;
-    std::array<float, 4> out = f.color;
-    if (blend) {
-      const float a = std::clamp(f.color[3], 0.0f, 1.0f) * std::min(f.coverage, 1.0f);
-      std::array<float, 4> dst;
-      for (int c = 0; c < 4; ++c) {
-        dst[c] = fb.desc.color_format == ColorFormat::kRGBA8 ? fb.rgba8[index * 4 + c] / 255.0f
-                                                             : fb.rgba32f[index * 4 + c];
-      }
-      for (int c = 0; c < 3; ++c)
-        out[c] = f.color[c] * a + dst[c] * (1.0f - a);
-      out[3] = a + dst[3] * (1.0f - a);
+    const bool rgba8 = fb.desc.color_format == ColorFormat::kRGBA8;
+    if (blend::write_primitive_sample(pipeline, f.color, f.coverage, blend,
+                                      rgba8 ? fb.rgba8.data() + index * 4 : nullptr,
+                                      rgba8 ? nullptr : fb.rgba32f.data() + index * 4)) {
+      continue;
     }
-    if (fb.desc.color_format == ColorFormat::kRGBA8) {
-      for (int c = 0; c < 4; ++c)
-        fb.rgba8[index * 4 + c] = to_unorm8(out[c]);
-    } else {
-      for (int c = 0; c < 4; ++c)
-        fb.rgba32f[index * 4 + c] = out[c];
+    for (int c = 0; c < 4; ++c) {
+      if (rgba8) {
+        fb.rgba8[index * 4 + c] = to_unorm8(f.color[c]);
+      } else {
+        fb.rgba32f[index * 4 + c] = f.color[c];
+      }
     }
   }
   if (any && pipeline.color_write) ++counters.pixels_shaded;

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/src/blend/blend.hpp"
 #include "engine/src/clip.hpp"
 #include "engine/src/reference/reference_sampler.hpp"
 #include "engine/src/reference/reference_shade.hpp"
@@ -280,10 +281,19 @@ TargetValues built_in_values(const PipelineState& pipeline, const FragmentInputs
   return out;
 }
 
-// Writes the first `targets` colour targets of sample `index`.
-void write_targets(detail::FramebufferStorage& fb, size_t index, const TargetValues& v,
-                   uint32_t targets) {
-  if (fb.desc.color_format == ColorFormat::kRGBA8) {
+// Writes the first `targets` colour targets of sample `index`, target 0 under the pipeline's
+// blend state.
+void write_targets(detail::FramebufferStorage& fb, const PipelineState& pipeline, size_t index,
+                   const TargetValues& v, uint32_t targets) {
+  const BlendState& blending = pipeline.blend[0];
+  if (!blending.replaces()) {
+    if (fb.desc.color_format == ColorFormat::kRGBA8) {
+      blend::write_rgba8(blending, pipeline.blend_constant, v.rgba[0], fb.rgba8.data() + index * 4);
+    } else {
+      blend::write_rgba32f(blending, pipeline.blend_constant, v.rgba[0],
+                           fb.rgba32f.data() + index * 4);
+    }
+  } else if (fb.desc.color_format == ColorFormat::kRGBA8) {
     for (int c = 0; c < 4; ++c)
       fb.rgba8[index * 4 + c] = to_unorm8(v.rgba[0][c]);
   } else {
@@ -339,7 +349,7 @@ void flush_user_batch(detail::FramebufferStorage& fb, const PipelineState& pipel
       const size_t index = fb.sample_index(static_cast<uint32_t>(fragment->px),
                                            static_cast<uint32_t>(fragment->py), s);
       if (write_depth) fb.depth[index] = fragment->depth[s];
-      write_targets(fb, index, values, inputs.targets);
+      write_targets(fb, pipeline, index, values, inputs.targets);
     }
   }
   batch.clear();
@@ -532,7 +542,7 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
       const TargetValues target_values = built_in_values(pipeline, inputs, values, w, primitive);
       for (uint32_t s = 0; s < samples; ++s) {
         if (passed[s]) {
-          write_targets(fb,
+          write_targets(fb, pipeline,
                         fb.sample_index(static_cast<uint32_t>(px), static_cast<uint32_t>(py), s),
                         target_values, inputs.targets);
         }
