@@ -78,18 +78,19 @@ struct BlendState {
   uint8_t write_mask = kWriteAll;
 
   // Whether a draw with this state stores its colour as it is (no blend, every channel).
-  bool replaces() const { return !enable && write_mask == kWriteAll; }
+  constexpr bool replaces() const { return !enable && write_mask == kWriteAll; }
+  friend constexpr bool operator==(const BlendState&, const BlendState&) = default;
 
   // The usual states: OpenGL's (SRC_ALPHA, ONE_MINUS_SRC_ALPHA) for colour and (ONE,
   // ONE_MINUS_SRC_ALPHA) for alpha; (ONE, ONE); (DST_COLOR, ZERO); (ONE,
   // ONE_MINUS_SRC_ALPHA) for both.
-  static BlendState over();
-  static BlendState additive();
-  static BlendState multiply();
-  static BlendState premultiplied_over();
+  static constexpr BlendState over();
+  static constexpr BlendState additive();
+  static constexpr BlendState multiply();
+  static constexpr BlendState premultiplied_over();
 };
 
-inline BlendState BlendState::over() {
+constexpr BlendState BlendState::over() {
   BlendState b;
   b.enable = true;
   b.src_color = BlendFactor::kSrcAlpha;
@@ -98,20 +99,20 @@ inline BlendState BlendState::over() {
   b.dst_alpha = BlendFactor::kOneMinusSrcAlpha;
   return b;
 }
-inline BlendState BlendState::additive() {
+constexpr BlendState BlendState::additive() {
   BlendState b;
   b.enable = true;
   b.src_color = b.dst_color = b.src_alpha = b.dst_alpha = BlendFactor::kOne;
   return b;
 }
-inline BlendState BlendState::multiply() {
+constexpr BlendState BlendState::multiply() {
   BlendState b;
   b.enable = true;
   b.src_color = b.src_alpha = BlendFactor::kDstColor;
   b.dst_color = b.dst_alpha = BlendFactor::kZero;
   return b;
 }
-inline BlendState BlendState::premultiplied_over() {
+constexpr BlendState BlendState::premultiplied_over() {
   BlendState b;
   b.enable = true;
   b.src_color = b.src_alpha = BlendFactor::kOne;

@@ -15,6 +15,18 @@ namespace tessera::blend {
 
 using Rgba = std::array<float, 4>;
 
+// The usual states (BlendState::over() and the others), which the fast engine compiles with
+// their factors known (a switch per factor per vector otherwise); kOther: any other state.
+enum class Preset : uint8_t { kOther, kOver, kPremultipliedOver, kAdditive, kMultiply };
+
+inline Preset preset_of(const BlendState& b) {
+  if (b == BlendState::over()) return Preset::kOver;
+  if (b == BlendState::premultiplied_over()) return Preset::kPremultipliedOver;
+  if (b == BlendState::additive()) return Preset::kAdditive;
+  if (b == BlendState::multiply()) return Preset::kMultiply;
+  return Preset::kOther;
+}
+
 // Factor f for channel c (0..2 colour, 3 alpha) of source s, destination d and constant k.
 inline float factor(BlendFactor f, int c, const Rgba& s, const Rgba& d, const Rgba& k) {
   switch (f) {

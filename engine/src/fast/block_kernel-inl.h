@@ -301,9 +301,38 @@ inline void triangle_hiz_range(const TileContext& tc, const TriangleSetup& t, fl
   hiz_range(tc, t.z_min - margin, t.z_max + margin, lo, hi);
 }
 
+// Calls f(state) with tc's blend state: for the usual states (blend::Preset) a constant, so
+// that once f is inlined the switches over its factors fold away (blended `small` and `medium`
+// at one thread about 0.95x the time of the switches, benchmarks/RESULTS.md decision 216), else
+// *tc.blend.
+template <class F>
+HWY_INLINE auto with_blend_state(const TileContext& tc, F&& f) {
+  switch (tc.blend_preset) {
+    case blend::Preset::kOver: {
+      static constexpr BlendState kState = BlendState::over();
+      return f(kState);
+    }
+    case blend::Preset::kPremultipliedOver: {
+      static constexpr BlendState kState = BlendState::premultiplied_over();
+      return f(kState);
+    }
+    case blend::Preset::kAdditive: {
+      static constexpr BlendState kState = BlendState::additive();
+      return f(kState);
+    }
+    case blend::Preset::kMultiply: {
+      static constexpr BlendState kState = BlendState::multiply();
+      return f(kState);
+    }
+    case blend::Preset::kOther:
+      break;
+  }
+  return f(*tc.blend);
+}
+
 // RGBA lanes blended into RGBA8 lanes `old` under tc.blend (blend.hpp's blend and write mask,
-// the same operations): the packed lanes to store. Out of line: one copy serves every path and
-// blend state, and draws that do not blend never reach it.
+// the same operations): the packed lanes to store. Out of line: one copy serves every path,
+// and draws that do not blend never reach it.
 template <class DF, class VF>
 HWY_NOINLINE hn::Vec<hn::RebindToUnsigned<DF>> blend_packed(DF df, const TileContext& tc,
                                                             hn::Vec<hn::RebindToUnsigned<DF>> old,
@@ -314,15 +343,20 @@ HWY_NOINLINE hn::Vec<hn::RebindToUnsigned<DF>> blend_packed(DF df, const TileCon
   const auto unpack = [&](auto bits) {
     return hn::Div(hn::ConvertTo(df, hn::BitCast(di, hn::And(bits, byte))), hn::Set(df, 255.0f));
   };
-  blend::HWY_NAMESPACE::blend(df, *tc.blend, tc.blend_constant.data(), true, r, g, b, a,
-                              unpack(old), unpack(hn::ShiftRight<8>(old)),
-                              unpack(hn::ShiftRight<16>(old)), unpack(hn::ShiftRight<24>(old)));
-  const auto packed = pack_unorm8<true>(df, r, g, b, a);
-  uint32_t keep = 0;  // the bytes of channels outside the write mask
-  for (int c = 0; c < 4; ++c)
-    if (!(tc.blend->write_mask & (1u << c))) keep |= 0xFFu << (8 * c);
-  if (keep == 0) return packed;
-  return hn::Or(hn::AndNot(hn::Set(du, keep), packed), hn::And(hn::Set(du, keep), old));
+  return with_blend_state(
+      tc, [&](const BlendState& state) __attribute__((always_inline)) {
+        VF r2 = r, g2 = g, b2 = b, a2 = a;
+        blend::HWY_NAMESPACE::blend(df, state, tc.blend_constant.data(), true, r2, g2, b2, a2,
+                                    unpack(old), unpack(hn::ShiftRight<8>(old)),
+                                    unpack(hn::ShiftRight<16>(old)),
+                                    unpack(hn::ShiftRight<24>(old)));
+        const auto packed = pack_unorm8<true>(df, r2, g2, b2, a2);
+        uint32_t keep = 0;  // the bytes of channels outside the write mask
+        for (int c = 0; c < 4; ++c)
+          if (!(state.write_mask & (1u << c))) keep |= 0xFFu << (8 * c);
+        if (keep == 0) return packed;
+        return hn::Or(hn::AndNot(hn::Set(du, keep), packed), hn::And(hn::Set(du, keep), old));
+      });
 }
 
 // RGBA lanes blended under tc.blend into the RGBA32F values at `dst` (interleaved, a whole
@@ -332,13 +366,18 @@ HWY_NOINLINE void blend_rgba32f(DF df, const TileContext& tc, float* HWY_RESTRIC
                                 VF g, VF b, VF a) {
   VF r0, g0, b0, a0;
   hn::LoadInterleaved4(df, dst, r0, g0, b0, a0);
-  blend::HWY_NAMESPACE::blend(df, *tc.blend, tc.blend_constant.data(), false, r, g, b, a, r0, g0,
-                              b0, a0);
-  const uint8_t mask = tc.blend->write_mask;
-  const auto pick = [&](int c, VF v, VF stored) {
-    return (mask & (1u << c)) ? hn::IfThenElse(m, v, stored) : stored;
-  };
-  hn::StoreInterleaved4(pick(0, r, r0), pick(1, g, g0), pick(2, b, b0), pick(3, a, a0), df, dst);
+  with_blend_state(
+      tc, [&](const BlendState& state) __attribute__((always_inline)) {
+        VF r2 = r, g2 = g, b2 = b, a2 = a;
+        blend::HWY_NAMESPACE::blend(df, state, tc.blend_constant.data(), false, r2, g2, b2, a2, r0,
+                                    g0, b0, a0);
+        const uint8_t mask = state.write_mask;
+        const auto pick = [&](int c, VF v, VF stored) {
+          return (mask & (1u << c)) ? hn::IfThenElse(m, v, stored) : stored;
+        };
+        hn::StoreInterleaved4(pick(0, r2, r0), pick(1, g2, g0), pick(2, b2, b0), pick(3, a2, a0),
+                              df, dst);
+      });
 }
 
 // The colour write of lane group i of block `block`: RGBA lanes to the samples that passed

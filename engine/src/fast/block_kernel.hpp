@@ -13,6 +13,7 @@
 
 #include "binning/tile_grid.hpp"
 
+#include "engine/src/blend/blend.hpp"
 #include "engine/src/fast/pixel_record.hpp"
 #include "engine/src/fast/triangle_setup.hpp"
 #include "engine/src/shade/layout.hpp"
@@ -81,6 +82,7 @@ struct TileContext {
   // null otherwise. Drawn through the block and window paths and the per-pixel writer
   // (write_pixel): no pixel or sample records, which hold packed colour.
   const BlendState* blend = nullptr;
+  blend::Preset blend_preset = blend::Preset::kOther;  // which usual state *blend is
   std::array<float, 4> blend_constant{};
 
   // A shaded draw's layout (shade/layout.hpp): its setups' planes are the floats from

@@ -175,6 +175,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   const BlendState& blending = pipeline.blend[0];
   if (color != ColorMode::kOff && !blending.replaces()) {
     draw.blend = &blending;
+    draw.blend_preset = blend::preset_of(blending);
     draw.blend_constant = pipeline.blend_constant;
   }
   const bool records = st.records && !shaded && draw.blend == nullptr;
