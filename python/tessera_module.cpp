@@ -537,6 +537,18 @@ PYBIND11_MODULE(tessera, m) {
       .def_readwrite("phong", &PipelineState::phong)
       .def_readwrite("object_id", &PipelineState::object_id)
       .def_readwrite("blend_constant", &PipelineState::blend_constant)
+      .def_readwrite("scissor_test", &PipelineState::scissor_test)
+      .def_property(
+          "scissor",
+          [](const PipelineState& self) {
+            const tessera::Rect& r = self.scissor;
+            return std::make_tuple(r.x, r.y, r.width, r.height);
+          },
+          [](PipelineState& self, std::tuple<int32_t, int32_t, uint32_t, uint32_t> r) {
+            self.scissor = {std::get<0>(r), std::get<1>(r), std::get<2>(r), std::get<3>(r)};
+          },
+          "The scissor rectangle (x, y, width, height) in window pixels from the top-left; "
+          "drawn only with scissor_test.")
       .def_property(
           "blend", [](const PipelineState& self) { return self.blend[0]; },
           [](PipelineState& self, const tessera::BlendState& b) { self.blend[0] = b; },

@@ -46,6 +46,7 @@ struct Options {
   bool no_depth = false;
   bool no_depth_write = false;
   std::string blend = "none";
+  std::vector<int64_t> scissor;
   bool affine = false;
   bool float_color = false;
   std::string cull = "none";
@@ -448,6 +449,20 @@ int run(const Options& o, const CLI::App& app) {
   }
   pipeline.depth_test = !o.no_depth;
   pipeline.depth_write = !o.no_depth_write;
+  if (!o.scissor.empty()) {
+    const char* names[] = {"x", "y", "width", "height"};
+    for (size_t i = 0; i < 4; ++i) {
+      const int64_t v = o.scissor[i], lo = i < 2 ? INT32_MIN : 0,
+                    hi = i < 2 ? INT32_MAX : UINT32_MAX;
+      if (v < lo || v > hi) {
+        bad_argument("--scissor: " + std::string(names[i]) + " " + std::to_string(v) +
+                     " is out of range (" + std::to_string(lo) + ".." + std::to_string(hi) + ")");
+      }
+    }
+    pipeline.scissor_test = true;
+    pipeline.scissor = {static_cast<int32_t>(o.scissor[0]), static_cast<int32_t>(o.scissor[1]),
+                        static_cast<uint32_t>(o.scissor[2]), static_cast<uint32_t>(o.scissor[3])};
+  }
   pipeline.blend[0] = o.blend == "over"            ? tessera::BlendState::over()
                       : o.blend == "add"           ? tessera::BlendState::additive()
                       : o.blend == "multiply"      ? tessera::BlendState::multiply()
@@ -678,6 +693,10 @@ int main(int argc, char** argv) {
                  "premultiplied (ONE, ONE_MINUS_SRC_ALPHA)")
       ->check(CLI::IsMember({"none", "over", "add", "multiply", "premultiplied"}))
       ->capture_default_str();
+  app.add_option("--scissor", o.scissor,
+                 "draw only inside this rectangle x,y,w,h (window pixels from the top-left)")
+      ->delimiter(',')
+      ->expected(4);
   app.add_flag("--no-depth-write", o.no_depth_write,
                "test depth without writing it (the usual state for transparent geometry)");
   app.add_flag("--affine", o.affine, "affine (screen-linear) attribute interpolation");

@@ -159,6 +159,27 @@ TEST(Cli, BlendOptionsBlendWithTheirOpenGLFactors) {
   }
 }
 
+TEST(Cli, ScissorDrawsOnlyInsideTheRectangle) {
+  TempDir dir;
+  write_filled_capture(dir / "green.tri", 16, 12, {0.0f, 1.0f, 0.0f, 1.0f});
+  const RunResult r = run_render(dir, quoted(dir / "green.tri") + " --scissor 3,2,5,4 -o " +
+                                          quoted(dir / "cut.png"));
+  ASSERT_TRUE(r.exited);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image image = read_image(dir / "cut.png");
+  ASSERT_EQ(image.width, 16);
+  for (int y = 0; y < 12; ++y) {
+    for (int x = 0; x < 16; ++x) {
+      const bool in = x >= 3 && x < 8 && y >= 2 && y < 6;
+      EXPECT_EQ(image.at(x, y)[1] == 1.0f, in) << x << "," << y;
+    }
+  }
+  const RunResult bad = run_render(dir, quoted(dir / "green.tri") + " --scissor 0,0,-4,4 -o " +
+                                            quoted(dir / "bad.png"));
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--scissor: width -4 is out of range"), std::string::npos) << bad.err;
+}
+
 // A TRI2 capture of one screen-filling triangle with Phong's ten varyings: an eye-space normal
 // (0, 0, 1), the eye-space position of a plane at z = -2 (x, y from -2 to 6), a white base
 // colour.

@@ -308,6 +308,8 @@ tessera::PipelineState to_cpp(const tessera_pipeline_state& c) {
     to.write_mask = static_cast<uint8_t>(from.write_mask);
   }
   std::copy(c.blend_constant, c.blend_constant + 4, p.blend_constant.begin());
+  p.scissor_test = c.scissor_test;
+  p.scissor = {c.scissor.x, c.scissor.y, c.scissor.width, c.scissor.height};
   if (c.texture != nullptr) p.texture = c.texture->texture;
   tessera::Sampler& sampler = p.sampler;
   sampler.mag_filter =
@@ -397,6 +399,8 @@ tessera_pipeline_state to_c(const tessera::PipelineState& p) {
                   from.write_mask};
   }
   std::copy(p.blend_constant.begin(), p.blend_constant.end(), c.blend_constant);
+  c.scissor_test = p.scissor_test;
+  c.scissor = {p.scissor.x, p.scissor.y, p.scissor.width, p.scissor.height};
   c.texture = nullptr;  // a C++ pipeline's texture has no C handle
   c.sampler.mag_filter = to_c_enum<tessera_filter>(p.sampler.mag_filter);
   c.sampler.min_filter = to_c_enum<tessera_filter>(p.sampler.min_filter);

@@ -120,6 +120,13 @@ constexpr BlendState BlendState::premultiplied_over() {
   return b;
 }
 
+// A rectangle of window pixels: its first pixel (x, y), counted from the top-left pixel with
+// y down, and its size.
+struct Rect {
+  int32_t x = 0, y = 0;
+  uint32_t width = 0, height = 0;
+};
+
 inline constexpr uint32_t kMinSubpixelBits = 4;
 inline constexpr uint32_t kMaxSubpixelBits = 8;
 
@@ -130,6 +137,12 @@ struct PipelineState {
   CompareOp depth_compare = CompareOp::kLess;
 
   bool color_write = true;
+  // The scissor test: with scissor_test, a draw writes only the pixels inside `scissor`
+  // (clipped to the framebuffer; an empty rectangle draws nothing). Samples outside it are
+  // neither covered nor tested.
+  bool scissor_test = false;
+  Rect scissor;
+
   // Blending and write masks per colour target (target 0, then the extra targets). Blending
   // applies to target 0; an extra target takes only BlendState{} (Error otherwise).
   std::array<BlendState, kMaxColorTargets> blend{};

@@ -455,6 +455,12 @@ typedef struct tessera_blend_state {
   uint32_t write_mask; /* TESSERA_WRITE_* bits; the channels left out keep their value */
 } tessera_blend_state;
 
+/* A rectangle of window pixels (tessera::Rect): first pixel (x, y) from the top-left, y down. */
+typedef struct tessera_rect {
+  int32_t x, y;
+  uint32_t width, height;
+} tessera_rect;
+
 /* tessera::PipelineState: everything about a draw but its vertex data. Fill it with
  * tessera_pipeline_state_init (the C++ defaults: depth test and write on with LESS, colour
  * write on, no culling, counter-clockwise front faces, perspective-correct Gouraud colour from
@@ -487,6 +493,9 @@ typedef struct tessera_pipeline_state {
   /* Per colour target: target 0 blends; the extra targets keep the init values. */
   tessera_blend_state blend[TESSERA_MAX_COLOR_TARGETS];
   float blend_constant[4]; /* CONSTANT_COLOR and CONSTANT_ALPHA */
+  /* With scissor_test, only the pixels inside `scissor` are drawn. */
+  bool scissor_test;
+  tessera_rect scissor;
 } tessera_pipeline_state;
 
 TESSERA_API tessera_result tessera_pipeline_state_init(tessera_pipeline_state* state);

@@ -494,9 +494,13 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
   const uint32_t samples = kMulti ? st.samples : 1;  // a constant 1 unrolls the sample loop
 
   const size_t block = tile_block(bx, by, st.tile_bx, st.tile_by);
+  // The block's columns and rows inside the region: [col0, cols) and [row0, rows). The region
+  // is block-aligned on the left and top except at a scissor rectangle's edges.
   const int32_t cols = std::min<int32_t>(8, tc.x1 + 1 - bx * 8);
   const int32_t rows = std::min<int32_t>(8, tc.y1 + 1 - by * 8);
-  const bool clipped_block = cols < 8 || rows < 8;
+  const int32_t col0 = std::max<int32_t>(0, tc.x0 - bx * 8);
+  const int32_t row0 = std::max<int32_t>(0, tc.y0 - by * 8);
+  const bool clipped_block = cols < 8 || rows < 8 || col0 > 0 || row0 > 0;
   alignas(64) uint32_t coverage_bits[64];
   if (wide) wide_coverage(t, tc, bx, by, coverage_bits);
 
@@ -547,8 +551,9 @@ HWY_INLINE void raster_block(const TileContext& tc, const TriangleSetup& t, Tria
   for (size_t i = first; i < last; i += lanes) {
     auto inside = all_lanes(di);
     if (clipped_block) {
-      inside = hn::And(hn::Lt(hn::Load(di, kPixels.x + i), hn::Set(di, cols)),
-                       hn::Lt(hn::Load(di, kPixels.y + i), hn::Set(di, rows)));
+      const auto x = hn::Load(di, kPixels.x + i), y = hn::Load(di, kPixels.y + i);
+      inside = hn::And(hn::And(hn::Lt(x, hn::Set(di, cols)), hn::Lt(y, hn::Set(di, rows))),
+                       hn::And(hn::Gt(x, hn::Set(di, col0 - 1)), hn::Gt(y, hn::Set(di, row0 - 1))));
     }
     // Edge values at the lanes' pixel centres: the group's first pixel plus lane offsets.
     const int32_t gx = static_cast<int32_t>(i & 7), gy = static_cast<int32_t>(i >> 3);
@@ -823,7 +828,8 @@ HWY_INLINE void visit_block(const TileContext& tc, const TriangleSetup& t, Trian
   bool test_depth = kDepth == DepthMode::kTest || kDepth == DepthMode::kTestWrite;
   if (tc.hiz) {
     const size_t block = tile_block(bx, by, st.tile_bx, st.tile_by);
-    const bool clipped_block = bx * 8 + 7 > tc.x1 || by * 8 + 7 > tc.y1;
+    const bool clipped_block =
+        bx * 8 + 7 > tc.x1 || by * 8 + 7 > tc.y1 || bx * 8 < tc.x0 || by * 8 < tc.y0;
     float lo, hi;
     hiz_range(tc, std::max(z_corner + bt.z_lo_offset, bt.z_floor),
               std::min(z_corner + bt.z_hi_offset, bt.z_ceil), lo, hi);
@@ -1363,7 +1369,9 @@ HWY_INLINE void raster_window(const TileContext& tc, const TriangleSetup& t, Cou
       e_row[e] += st.step_y[e] * rows;
     const int32_t by = wy >> 3, r = wy & 7;
     const auto fy = hn::Add(fy_lane, hn::Set(df, static_cast<float>(r)));
-    const auto box = hn::And(cols_in, hn::Lt(row, hn::Set(di, py1 - wy + 1)));
+    // Rows from the box's first (py0: a window may begin a row above it) to its last.
+    const auto box = hn::And(cols_in, hn::And(hn::Lt(row, hn::Set(di, py1 - wy + 1)),
+                                              hn::Gt(row, hn::Set(di, st.py0 - wy - 1))));
     // Inside edge e at sample s when E > threshold (one sample: the only coverage).
     const auto covered = [&](const int32_t* threshold) {
       auto m = hn::And(box, hn::Gt(e0, hn::Set(di, threshold[0])));

@@ -65,8 +65,12 @@ struct TileContext {
   // form a sample's edge thresholds in a row of four lanes.
   alignas(64) std::array<int32_t, 64> sample_x4{}, sample_y4{};
 
+  // The pixels the draw may write (scissor.hpp's draw_box: the framebuffer, or the scissor
+  // rectangle inside it).
+  int32_t clip_x0 = 0, clip_y0 = 0, clip_x1 = -1, clip_y1 = -1;
   // The region drawn: its first and last pixel (inclusive, inside the framebuffer): a bin tile
-  // (block-aligned) inside one storage tile. The storage tile's first pixel and storage:
+  // inside one storage tile, clipped to the draw's pixels (block-aligned except at the edges of
+  // a scissor rectangle). The storage tile's first pixel and storage:
   int32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   int32_t tile_x0 = 0, tile_y0 = 0;
   float* depth = nullptr;    // sample plane s of block b at (s * 64 + b) * 64

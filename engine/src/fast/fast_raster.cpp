@@ -23,6 +23,7 @@
 #include "engine/src/fast/tile_raster.hpp"
 #include "engine/src/fast/triangle_setup.hpp"
 #include "engine/src/sample_positions.hpp"
+#include "engine/src/scissor.hpp"
 #include "engine/src/shading_state.hpp"
 #include "tessera/error.hpp"
 
@@ -184,6 +185,11 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   const SampleKernel samples_kernel = records && (samples == 2 || samples == 4)
                                           ? sample_kernel(*st.kernels, depth, color, st.count)
                                           : nullptr;
+  const PixelBox box = draw_box(pipeline, fb.desc.width, fb.desc.height);
+  draw.clip_x0 = box.x0;
+  draw.clip_y0 = box.y0;
+  draw.clip_x1 = box.x1;
+  draw.clip_y1 = box.y1;
   const CompareOp op = pipeline.depth_compare;
   draw.hiz = st.hiz && pipeline.depth_test &&
              (op == CompareOp::kLess || op == CompareOp::kLessEqual || op == CompareOp::kGreater ||

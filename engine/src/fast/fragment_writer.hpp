@@ -12,6 +12,7 @@
 #include "engine/src/blend/blend.hpp"
 #include "engine/src/framebuffer_storage.hpp"
 #include "engine/src/sample_positions.hpp"
+#include "engine/src/scissor.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
 
@@ -23,6 +24,7 @@ struct TileWriter {
   const PipelineState& pipeline;
   bool blend;
   Counters& counters;
+  PixelBox box = draw_box(pipeline, fb.desc.width, fb.desc.height);  // the scissor test
   bool plain_rgba8 = fb.desc.samples == 1 && !pipeline.depth_test && !blend &&
                      pipeline.blend[0].replaces() && pipeline.color_write &&
                      fb.desc.color_format == ColorFormat::kRGBA8;
@@ -32,6 +34,7 @@ struct TileWriter {
   void write(int64_t px, int64_t py, float depth_in, const std::array<float, 4>& color,
              float coverage, uint32_t mask = 0xFFFFu, float dz_dx = 0.0f, float dz_dy = 0.0f) {
     if (!(coverage > 0.0f)) return;
+    if (pipeline.scissor_test && !box.contains(px, py)) return;
     const uint32_t x = static_cast<uint32_t>(px), y = static_cast<uint32_t>(py);
     if (plain_rgba8 && (mask & 1u)) {  // the common case: one sample, no depth test, no blend
       uint8_t* p = fb.rgba8.data() + fb.sample_index(x, y, 0) * 4;

@@ -398,7 +398,7 @@ struct RunWriter {
     return fb.desc.samples == 1 &&
            (fb.desc.color_format == ColorFormat::kRGBA8 || !pipeline.color_write) &&
            !(state.antialiased && state.stipple.pattern != 0xFFFF) &&
-           (pipeline.blend[0].replaces() || !pipeline.color_write);
+           (pipeline.blend[0].replaces() || !pipeline.color_write) && !pipeline.scissor_test;
   }
 
   // Shades and writes pixels 0 .. n - 1 of the run.

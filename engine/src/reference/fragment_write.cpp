@@ -9,12 +9,17 @@
 
 #include "engine/src/blend/blend.hpp"
 #include "engine/src/sample_positions.hpp"
+#include "engine/src/scissor.hpp"
 
 namespace tessera::reference {
 
 void write_fragment(detail::FramebufferStorage& fb, const PipelineState& pipeline,
                     const Fragment& f, bool blend, Counters& counters) {
   if (!(f.coverage > 0.0f)) return;
+  if (pipeline.scissor_test &&
+      !draw_box(pipeline, fb.desc.width, fb.desc.height).contains(f.x, f.y)) {
+    return;
+  }
   const uint32_t samples = fb.desc.samples;
   const auto pattern = sample_pattern(samples);
   const double depth_scale = detail::depth_scale(fb.desc.depth_format);

@@ -26,6 +26,7 @@
 #include "engine/src/reference/reference_sampler.hpp"
 #include "engine/src/reference/reference_shade.hpp"
 #include "engine/src/sample_positions.hpp"
+#include "engine/src/scissor.hpp"
 #include "engine/src/shade/user_batch.hpp"
 #include "engine/src/shading_state.hpp"
 
@@ -470,12 +471,12 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
   // Pixels whose samples can be inside: the snapped bounding box, one pixel wider on each side
   // (a sample may sit on its pixel's left or top border), clamped to the framebuffer.
   auto pixel_of = [bits](int64_t fixed) { return fixed >> bits; };  // floor division
-  const int64_t x0 = std::max<int64_t>(0, pixel_of(std::min({v[0].x, v[1].x, v[2].x})) - 1);
-  const int64_t y0 = std::max<int64_t>(0, pixel_of(std::min({v[0].y, v[1].y, v[2].y})) - 1);
-  const int64_t x1 =
-      std::min<int64_t>(fb.desc.width - 1, pixel_of(std::max({v[0].x, v[1].x, v[2].x})) + 1);
-  const int64_t y1 =
-      std::min<int64_t>(fb.desc.height - 1, pixel_of(std::max({v[0].y, v[1].y, v[2].y})) + 1);
+  // The scissor test: pixels outside the draw box are not visited.
+  const PixelBox box = draw_box(pipeline, fb.desc.width, fb.desc.height);
+  const int64_t x0 = std::max<int64_t>(box.x0, pixel_of(std::min({v[0].x, v[1].x, v[2].x})) - 1);
+  const int64_t y0 = std::max<int64_t>(box.y0, pixel_of(std::min({v[0].y, v[1].y, v[2].y})) - 1);
+  const int64_t x1 = std::min<int64_t>(box.x1, pixel_of(std::max({v[0].x, v[1].x, v[2].x})) + 1);
+  const int64_t y1 = std::min<int64_t>(box.y1, pixel_of(std::max({v[0].y, v[1].y, v[2].y})) + 1);
 
   std::vector<UserFragment> user_fragments;
   for (int64_t py = y0; py <= y1; ++py) {

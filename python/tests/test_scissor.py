@@ -1,0 +1,25 @@
+"""The scissor test through Python: only the rectangle is drawn, in both backends."""
+
+import numpy as np
+import pytest
+
+import tessera
+
+
+@pytest.mark.parametrize("backend", ["fast", "reference"])
+def test_a_screen_filling_draw_writes_only_the_scissor_rectangle(backend):
+    positions = np.array(
+        [[-1, -1, 0.5, 1], [1, -1, 0.5, 1], [1, 1, 0.5, 1], [-1, 1, 0.5, 1]], dtype=np.float32
+    )
+    colors = np.tile(np.array([1, 0, 0, 1], dtype=np.float32), (4, 1))
+    indices = np.array([0, 1, 2, 0, 2, 3], dtype=np.uint32)
+    pipeline = tessera.Pipeline(scissor_test=True, scissor=(5, 3, 11, 7))
+    assert pipeline.scissor == (5, 3, 11, 7)
+    framebuffer = tessera.Framebuffer(40, 24)
+    tessera.Renderer(threads=2, backend=backend).draw(
+        framebuffer, positions, colors, indices, pipeline=pipeline
+    )
+    red = framebuffer.read_rgba8()[..., 0] == 255
+    expected = np.zeros((24, 40), dtype=bool)
+    expected[3:10, 5:16] = True
+    np.testing.assert_array_equal(red, expected)
