@@ -537,6 +537,9 @@ PYBIND11_MODULE(tessera, m) {
       .def_readwrite("phong", &PipelineState::phong)
       .def_readwrite("object_id", &PipelineState::object_id)
       .def_readwrite("blend_constant", &PipelineState::blend_constant)
+      .def_readwrite("depth_bias_constant", &PipelineState::depth_bias_constant)
+      .def_readwrite("depth_bias_slope", &PipelineState::depth_bias_slope)
+      .def_readwrite("depth_bias_clamp", &PipelineState::depth_bias_clamp)
       .def_readwrite("scissor_test", &PipelineState::scissor_test)
       .def_property(
           "scissor",

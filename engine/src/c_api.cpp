@@ -308,6 +308,9 @@ tessera::PipelineState to_cpp(const tessera_pipeline_state& c) {
     to.write_mask = static_cast<uint8_t>(from.write_mask);
   }
   std::copy(c.blend_constant, c.blend_constant + 4, p.blend_constant.begin());
+  p.depth_bias_constant = c.depth_bias_constant;
+  p.depth_bias_slope = c.depth_bias_slope;
+  p.depth_bias_clamp = c.depth_bias_clamp;
   p.scissor_test = c.scissor_test;
   p.scissor = {c.scissor.x, c.scissor.y, c.scissor.width, c.scissor.height};
   if (c.texture != nullptr) p.texture = c.texture->texture;
@@ -399,6 +402,9 @@ tessera_pipeline_state to_c(const tessera::PipelineState& p) {
                   from.write_mask};
   }
   std::copy(p.blend_constant.begin(), p.blend_constant.end(), c.blend_constant);
+  c.depth_bias_constant = p.depth_bias_constant;
+  c.depth_bias_slope = p.depth_bias_slope;
+  c.depth_bias_clamp = p.depth_bias_clamp;
   c.scissor_test = p.scissor_test;
   c.scissor = {p.scissor.x, p.scissor.y, p.scissor.width, p.scissor.height};
   c.texture = nullptr;  // a C++ pipeline's texture has no C handle

@@ -77,8 +77,8 @@ bool all_finite(std::span<const Float4> positions, tbb::task_arena* arena = null
   return all_finite(std::span<const float>(&positions.data()->x, positions.size() * 4), arena);
 }
 
-// The blend state: enums in range, a write mask of four bits, a finite constant, and only
-// target 0 blending or masking channels.
+// The blend state (enums in range, a write mask of four bits, a finite constant, and only
+// target 0 blending or masking channels) and a finite depth bias.
 void validate_blend(const PipelineState& pipeline) {
   for (uint32_t t = 0; t < kMaxColorTargets; ++t) {
     const BlendState& b = pipeline.blend[t];
@@ -99,6 +99,16 @@ void validate_blend(const PipelineState& pipeline) {
            "pipeline blend[" + std::to_string(t) +
                "] blends or masks channels: only colour target 0 blends; the extra targets "
                "take BlendState{}");
+    }
+  }
+  const std::pair<const char*, float> bias[] = {
+      {"depth_bias_constant", pipeline.depth_bias_constant},
+      {"depth_bias_slope", pipeline.depth_bias_slope},
+      {"depth_bias_clamp", pipeline.depth_bias_clamp}};
+  for (const auto& [name, value] : bias) {
+    if (!std::isfinite(value)) {
+      fail(ErrorCode::kInvalidArgument,
+           std::string("pipeline ") + name + " " + std::to_string(value) + " is not finite");
     }
   }
   for (int c = 0; c < 4; ++c) {

@@ -136,6 +136,15 @@ struct PipelineState {
   bool depth_write = true;
   CompareOp depth_compare = CompareOp::kLess;
 
+  // Depth bias (Direct3D's and Vulkan's formula, engine/src/depth_bias.hpp): each triangle's
+  // depth is offset by depth_bias_constant * r + depth_bias_slope * max(|dz/dx|, |dz/dy|), r
+  // the depth format's smallest step at the triangle's depth, clamped by depth_bias_clamp when
+  // it is not 0. It applies to triangles, the triangles wide lines, square points and polygons
+  // are drawn as included; not to one-pixel or antialiased lines or round points.
+  float depth_bias_constant = 0.0f;
+  float depth_bias_slope = 0.0f;
+  float depth_bias_clamp = 0.0f;
+
   bool color_write = true;
   // The scissor test: with scissor_test, a draw writes only the pixels inside `scissor`
   // (clipped to the framebuffer; an empty rectangle draws nothing). Samples outside it are

@@ -496,6 +496,9 @@ typedef struct tessera_pipeline_state {
   /* With scissor_test, only the pixels inside `scissor` are drawn. */
   bool scissor_test;
   tessera_rect scissor;
+  /* Depth bias (Direct3D's formula): constant * r + slope * max(|dz/dx|, |dz/dy|), clamped by
+   * depth_bias_clamp when it is not 0. */
+  float depth_bias_constant, depth_bias_slope, depth_bias_clamp;
 } tessera_pipeline_state;
 
 TESSERA_API tessera_result tessera_pipeline_state_init(tessera_pipeline_state* state);

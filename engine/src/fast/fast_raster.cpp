@@ -203,6 +203,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   ctx.attribute_count = input.attribute_count;
   ctx.color_first = pipeline.roles.color;
   ctx.pipeline = &pipeline;
+  ctx.depth_format = fb.desc.depth_format;
   ctx.guard_band = GuardBand::for_viewport(fb.desc.width, fb.desc.height);
   ctx.check_finite = check_finite;
   ctx.bin_tile_log2 = grid.size_log2;

@@ -13,6 +13,8 @@
 
 #include "engine/src/fast/setup_kernel.hpp"
 
+#include "engine/src/depth_bias.hpp"
+
 // Arrays of vectors need sized vector types: targets with sizeless vectors are not compiled
 // here and use the portable (EMU128/scalar) instance instead. The build's own exclusions
 // (cmake/TesseraDependencies.cmake) still apply.
@@ -851,6 +853,32 @@ HWY_INLINE void SetupLaneGroup(const SetupContext& ctx, const LaneConstants& lc,
     hn::Store(hn::Add(hn::Add(hn::Mul(wdy[0], v0), hn::Mul(wdy[1], v1)), hn::Mul(wdy[2], v2)), d,
               gy + l0);
   };
+  if (has_depth_bias(p)) {
+    // depth_bias.hpp's bias per lane, added to each vertex's z. For float depth, r = 2^(e - 23)
+    // from the bits of the largest |z|: its exponent field less 23, shifted back into place (0
+    // where that would be below 2^-1000, as for z = 0).
+    const hn::RebindToSigned<decltype(d)> di64;
+    V unit = hn::Set(d, depth_bias_unit(ctx.depth_format, 1.0));
+    if (ctx.depth_format == DepthFormat::kFloat32) {
+      const V z_abs = hn::Max(hn::Max(hn::Abs(Z[0]), hn::Abs(Z[1])), hn::Abs(Z[2]));
+      const auto exponent = hn::ShiftRight<52>(hn::BitCast(di64, z_abs));
+      const auto above = hn::Gt(exponent, hn::Set(di64, 23));
+      unit = hn::BitCast(
+          d, hn::IfThenElseZero(above, hn::ShiftLeft<52>(hn::Sub(exponent, hn::Set(di64, 23)))));
+    }
+    const V gx =
+        hn::Add(hn::Add(hn::Mul(wdx[0], Z[0]), hn::Mul(wdx[1], Z[1])), hn::Mul(wdx[2], Z[2]));
+    const V gy =
+        hn::Add(hn::Add(hn::Mul(wdy[0], Z[0]), hn::Mul(wdy[1], Z[1])), hn::Mul(wdy[2], Z[2]));
+    V bias =
+        hn::Add(hn::Mul(hn::Set(d, double{p.depth_bias_constant}), unit),
+                hn::Mul(hn::Set(d, double{p.depth_bias_slope}), hn::Max(hn::Abs(gx), hn::Abs(gy))));
+    const double clamp = p.depth_bias_clamp;
+    if (clamp > 0.0) bias = hn::Min(bias, hn::Set(d, clamp));
+    if (clamp < 0.0) bias = hn::Max(bias, hn::Set(d, clamp));
+    for (V& z : Z)
+      z = hn::Add(z, bias);
+  }
   plane(Z[0], Z[1], Z[2], out.z0, out.z_dx, out.z_dy);
   const V one = hn::Set(d, 1.0);
   hn::Store(hn::Min(hn::Max(hn::Min(hn::Min(Z[0], Z[1]), Z[2]), zero), one), d, out.z_min + l0);

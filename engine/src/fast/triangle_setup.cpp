@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 
+#include "engine/src/depth_bias.hpp"
 #include "engine/src/fast/block_kernel.hpp"
 
 namespace tessera::fast {
@@ -174,9 +175,18 @@ void setup_snapped(const SetupContext& ctx, const std::array<Snapped, 3>& in, Se
     gx = static_cast<float>(wdx[0] * v0 + wdx[1] * v1 + wdx[2] * v2);
     gy = static_cast<float>(wdy[0] * v0 + wdy[1] * v1 + wdy[2] * v2);
   };
-  plane(v[0]->z, v[1]->z, v[2]->z, t.z0, t.z_dx, t.z_dy);
-  t.z_min = static_cast<float>(std::clamp(std::min({v[0]->z, v[1]->z, v[2]->z}), 0.0, 1.0));
-  t.z_max = static_cast<float>(std::clamp(std::max({v[0]->z, v[1]->z, v[2]->z}), 0.0, 1.0));
+  double z[3] = {v[0]->z, v[1]->z, v[2]->z};
+  if (has_depth_bias(p)) {  // depth_bias.hpp, added to each vertex's z
+    const double gx = wdx[0] * z[0] + wdx[1] * z[1] + wdx[2] * z[2];
+    const double gy = wdy[0] * z[0] + wdy[1] * z[1] + wdy[2] * z[2];
+    const double z_abs_max = std::max({std::abs(z[0]), std::abs(z[1]), std::abs(z[2])});
+    const double bias = depth_bias(p, depth_bias_unit(ctx.depth_format, z_abs_max), gx, gy);
+    for (double& value : z)
+      value += bias;
+  }
+  plane(z[0], z[1], z[2], t.z0, t.z_dx, t.z_dy);
+  t.z_min = static_cast<float>(std::clamp(std::min({z[0], z[1], z[2]}), 0.0, 1.0));
+  t.z_max = static_cast<float>(std::clamp(std::max({z[0], z[1], z[2]}), 0.0, 1.0));
 
   double q[3] = {1.0, 1.0, 1.0};
   const bool needs_q = shaded ? shaded->layout.needs_q : p.interpolation != Interpolation::kAffine;

@@ -16,6 +16,7 @@
 #include "engine/src/clip.hpp"
 #include "engine/src/sample_positions.hpp"
 #include "engine/src/shade/layout.hpp"
+#include "tessera/framebuffer.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
 
@@ -103,6 +104,7 @@ struct SetupContext {
     return attribute_count > color_first ? std::min(attribute_count - color_first, 4u) : 0;
   }
   const PipelineState* pipeline = nullptr;
+  DepthFormat depth_format = DepthFormat::kFloat32;  // r of the depth bias (depth_bias.hpp)
   GuardBand guard_band;
   // The samples' offsets from the pixel centre, smallest and largest over the pattern, in 1/16
   // pixel (sample_positions.hpp): the bounding box keeps only pixels with a sample inside the

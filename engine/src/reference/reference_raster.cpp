@@ -23,6 +23,7 @@
 
 #include "engine/src/blend/blend.hpp"
 #include "engine/src/clip.hpp"
+#include "engine/src/depth_bias.hpp"
 #include "engine/src/reference/reference_sampler.hpp"
 #include "engine/src/reference/reference_shade.hpp"
 #include "engine/src/sample_positions.hpp"
@@ -461,6 +462,24 @@ void rasterize_triangle(detail::FramebufferStorage& fb, const PipelineState& pip
   ++counters.triangles_rasterized;
 
   const uint32_t bits = pipeline.subpixel_bits;
+  if (has_depth_bias(pipeline)) {
+    // The plane of z over the snapped positions, per pixel (area is twice the triangle's area
+    // in fixed-point units squared, and positive here).
+    const double scale = std::ldexp(1.0, static_cast<int>(bits)) / static_cast<double>(area);
+    const double z10 = v[1].z - v[0].z, z20 = v[2].z - v[0].z;
+    const double x10 = static_cast<double>(v[1].x - v[0].x),
+                 x20 = static_cast<double>(v[2].x - v[0].x);
+    const double y10 = static_cast<double>(v[1].y - v[0].y),
+                 y20 = static_cast<double>(v[2].y - v[0].y);
+    // z = z0 + a (x - x0) + b (y - y0) through the three vertices: area = x10 y20 - x20 y10.
+    const double dz_dx = (z10 * y20 - z20 * y10) * scale;
+    const double dz_dy = (x10 * z20 - x20 * z10) * scale;
+    const double z_abs_max = std::max({std::abs(v[0].z), std::abs(v[1].z), std::abs(v[2].z)});
+    const double bias =
+        depth_bias(pipeline, depth_bias_unit(fb.desc.depth_format, z_abs_max), dz_dx, dz_dy);
+    for (WindowVertex& vertex : v)
+      vertex.z += bias;
+  }
   const int shift = static_cast<int>(bits) - 4;  // 1/16 pixel -> fixed point
   const uint32_t samples = fb.desc.samples;
   const double depth_scale = detail::depth_scale(fb.desc.depth_format);
