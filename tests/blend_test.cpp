@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "engine/src/blend/blend.hpp"
-#include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 #include "tests/expect_error.hpp"
+#include "tests/simd_targets.hpp"
 
 namespace tessera {
 namespace {
@@ -296,15 +296,6 @@ void expect_same(const Image& fast, const Image& ref, const std::string& what) {
   EXPECT_EQ(first_difference(fast.depth, ref.depth), ref.depth.size()) << what << ": depth";
 }
 
-std::vector<SimdTarget> simd_targets() {
-  std::vector<SimdTarget> out;
-  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
-                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
-    if (simd::is_available(t)) out.push_back(t);
-  }
-  return out;
-}
-
 void expect_fast_equals_reference(Draw draw, const std::vector<uint32_t>& thread_counts) {
   const Scene scene = soup(7);
   for (const State& state : states()) {
@@ -319,7 +310,7 @@ void expect_fast_equals_reference(Draw draw, const std::vector<uint32_t>& thread
         const Image plain = render(scene, PipelineState{}, format, samples, Backend::kReference,
                                    SimdTarget::kAuto, 1, draw);
         EXPECT_TRUE(ref.rgba8 != plain.rgba8 || ref.rgba32f != plain.rgba32f) << what;
-        for (SimdTarget simd : simd_targets()) {
+        for (SimdTarget simd : test::runnable_simd_targets()) {
           for (uint32_t threads : thread_counts) {
             const Image fast =
                 render(scene, state.pipeline, format, samples, Backend::kFast, simd, threads, draw);

@@ -162,8 +162,8 @@ TEST(Cli, BlendOptionsBlendWithTheirOpenGLFactors) {
 TEST(Cli, ScissorDrawsOnlyInsideTheRectangle) {
   TempDir dir;
   write_filled_capture(dir / "green.tri", 16, 12, {0.0f, 1.0f, 0.0f, 1.0f});
-  const RunResult r = run_render(dir, quoted(dir / "green.tri") + " --scissor 3,2,5,4 -o " +
-                                          quoted(dir / "cut.png"));
+  const RunResult r = run_render(
+      dir, quoted(dir / "green.tri") + " --scissor 3,2,5,4 -o " + quoted(dir / "cut.png"));
   ASSERT_TRUE(r.exited);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Image image = read_image(dir / "cut.png");
@@ -174,8 +174,8 @@ TEST(Cli, ScissorDrawsOnlyInsideTheRectangle) {
       EXPECT_EQ(image.at(x, y)[1] == 1.0f, in) << x << "," << y;
     }
   }
-  const RunResult bad = run_render(dir, quoted(dir / "green.tri") + " --scissor 0,0,-4,4 -o " +
-                                            quoted(dir / "bad.png"));
+  const RunResult bad = run_render(
+      dir, quoted(dir / "green.tri") + " --scissor 0,0,-4,4 -o " + quoted(dir / "bad.png"));
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("--scissor: width -4 is out of range"), std::string::npos) << bad.err;
 }

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "engine/src/depth_bias.hpp"
-#include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 #include "tests/expect_error.hpp"
+#include "tests/simd_targets.hpp"
 
 namespace tessera {
 namespace {
@@ -182,9 +182,7 @@ TEST(DepthBias, TheFastEnginesBiasedDepthIsWithinItsToleranceOfTheReferencesOnEv
           std::min(least_bias, std::ldexp(double{ref.first[i]} - double{ref_plain.first[i]}, 24));
     }
     EXPECT_GE(least_bias, 39.0);
-    for (SimdTarget simd : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
-                            SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
-      if (!simd::is_available(simd)) continue;
+    for (SimdTarget simd : test::runnable_simd_targets()) {
       for (uint32_t threads : {1u, 2u}) {
         const auto fast = render(biased, Backend::kFast, simd, threads);
         EXPECT_EQ(fast.second, ref.second);

@@ -39,6 +39,7 @@
 #include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 #include "tests/reference_test_support.hpp"
+#include "tests/simd_targets.hpp"
 
 namespace tessera::extremes {
 
@@ -115,12 +116,7 @@ struct FastConfig {
 };
 
 inline std::vector<SimdTarget> available_targets() {
-  std::vector<SimdTarget> targets;
-  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
-                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
-    if (simd::is_available(t)) targets.push_back(t);
-  }
-  return targets;
+  return test::runnable_simd_targets();
 }
 
 inline std::vector<FastConfig> fast_configs(std::initializer_list<uint32_t> threads = {1, 2, 3}) {

@@ -16,6 +16,7 @@
 #include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
 #include "tests/expect_error.hpp"
+#include "tests/simd_targets.hpp"
 
 namespace tessera {
 namespace {
@@ -35,12 +36,7 @@ DrawInput input_of(const std::vector<Float4>& positions) {
 }
 
 std::vector<SimdTarget> targets() {
-  std::vector<SimdTarget> out;
-  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
-                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
-    if (simd::is_available(t)) out.push_back(t);
-  }
-  return out;
+  return test::runnable_simd_targets();
 }
 
 constexpr OcclusionMode kModes[] = {OcclusionMode::kConservative, OcclusionMode::kExact};

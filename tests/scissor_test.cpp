@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
+#include "tests/simd_targets.hpp"
 
 namespace tessera {
 namespace {
@@ -122,15 +122,6 @@ void expect_cut_out(const Image& scissored, const Image& full, const Image& clea
   EXPECT_EQ(wrong, 0u) << what;
 }
 
-std::vector<SimdTarget> simd_targets() {
-  std::vector<SimdTarget> out;
-  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
-                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
-    if (simd::is_available(t)) out.push_back(t);
-  }
-  return out;
-}
-
 void check(Draw draw, const PipelineState& base, const std::vector<uint32_t>& thread_counts,
            int count) {
   const Scene scene = soup(11, count);
@@ -152,7 +143,7 @@ void check(Draw draw, const PipelineState& base, const std::vector<uint32_t>& th
             render(scene, p, samples, format, Backend::kReference, SimdTarget::kAuto, 1, draw));
         expect_cut_out(references.back(), full, cleared, r, samples, config + ", reference");
       }
-      for (SimdTarget simd : simd_targets()) {
+      for (SimdTarget simd : test::runnable_simd_targets()) {
         for (uint32_t threads : thread_counts) {
           const std::string where = config + ", target " + std::to_string(static_cast<int>(simd)) +
                                     ", " + std::to_string(threads) + " threads";

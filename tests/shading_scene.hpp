@@ -13,6 +13,7 @@
 
 #include "simd/dispatch.hpp"
 #include "tessera/tessera.hpp"
+#include "tests/simd_targets.hpp"
 
 namespace tessera::shading_scene {
 
@@ -85,9 +86,7 @@ struct Target {
 // The SIMD targets this CPU runs, each at 1, 2 and 3 threads.
 inline std::vector<Target> fast_targets() {
   std::vector<Target> out;
-  for (SimdTarget t : {SimdTarget::kScalar, SimdTarget::kSSE4, SimdTarget::kAVX2,
-                       SimdTarget::kAVX512, SimdTarget::kNEON, SimdTarget::kSVE}) {
-    if (!simd::is_available(t)) continue;
+  for (SimdTarget t : test::runnable_simd_targets()) {
     for (uint32_t threads : {1u, 2u, 3u})
       out.push_back({t, threads});
   }
