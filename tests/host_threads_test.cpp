@@ -214,7 +214,8 @@ TEST(HostThreads, ThreadsReadOneFramebufferOneAfterAnotherAndDrawIntoOthers) {
   const std::vector<Result> expected = serial(all, Backend::kFast);
   std::mutex turn;
   constexpr uint32_t kThreads = 3;
-  std::vector<bool> same_image(kThreads, false), same_draw(kThreads, false);
+  // One byte per thread (std::vector<bool> packs them into shared words, a race).
+  std::vector<uint8_t> same_image(kThreads, 0), same_draw(kThreads, 0);
   on_threads(kThreads, [&](uint32_t t) {
     Renderer own = make_renderer(Backend::kFast, 1);
     const Result drawn = draw(own, all[t + 1]);
