@@ -417,11 +417,10 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
                              tessera::bench::kPhongVaryings)
       : blended ? interleave(capture, tessera::bench::blended_varyings(capture), 4)
                 : interleave(capture, capture.varyings, 4);
-  if (blended) {  // blend_workload.hpp's state
+  if (blended) {  // blend_workload.hpp's state (depth writes off around the draw only, below)
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    glDepthMask(GL_FALSE);
   }
   GLuint vbo = 0;
   glGenBuffers(1, &vbo);
@@ -449,7 +448,11 @@ bool run_capture(const std::filesystem::path& path, const Options& o) {
   const auto count = static_cast<GLsizei>(vertex_count);
   auto frame = [&](bool draw) {
     const auto t0 = Clock::now();
+    // glClear writes depth only under glDepthMask(GL_TRUE): the blended draw turns depth
+    // writes off after the clear and back on for the next frame's.
+    glDepthMask(GL_TRUE);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (blended) glDepthMask(GL_FALSE);
     if (draw) glDrawArrays(GL_TRIANGLES, 0, count);
     glFinish();
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
