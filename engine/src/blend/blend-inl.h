@@ -13,6 +13,7 @@
 
 #include <hwy/highway.h>
 
+#include "engine/src/blend/blend.hpp"
 #include "tessera/pipeline.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -110,7 +111,7 @@ HWY_INLINE void blend(DF df, const BlendState& b, const float* k_in, bool unorm,
     bl = saturate(df, bl);
     a = saturate(df, a);
     for (float& v : k)
-      v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+      v = tessera::blend::saturate(v);
   }
   const VF r2 = channel(df, b, false, r, a, dr, da, k[0], k[3]);
   const VF g2 = channel(df, b, false, g, a, dg, da, k[1], k[3]);

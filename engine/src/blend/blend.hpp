@@ -19,11 +19,20 @@ using Rgba = std::array<float, 4>;
 // their factors known (a switch per factor per vector otherwise); kOther: any other state.
 enum class Preset : uint8_t { kOther, kOver, kPremultipliedOver, kAdditive, kMultiply };
 
+// Preset P's state (BlendState{} for kOther).
+template <Preset P>
+inline constexpr BlendState kPresetState = P == Preset::kOver ? BlendState::over()
+                                           : P == Preset::kPremultipliedOver
+                                               ? BlendState::premultiplied_over()
+                                           : P == Preset::kAdditive ? BlendState::additive()
+                                           : P == Preset::kMultiply ? BlendState::multiply()
+                                                                    : BlendState{};
+
 inline Preset preset_of(const BlendState& b) {
-  if (b == BlendState::over()) return Preset::kOver;
-  if (b == BlendState::premultiplied_over()) return Preset::kPremultipliedOver;
-  if (b == BlendState::additive()) return Preset::kAdditive;
-  if (b == BlendState::multiply()) return Preset::kMultiply;
+  if (b == kPresetState<Preset::kOver>) return Preset::kOver;
+  if (b == kPresetState<Preset::kPremultipliedOver>) return Preset::kPremultipliedOver;
+  if (b == kPresetState<Preset::kAdditive>) return Preset::kAdditive;
+  if (b == kPresetState<Preset::kMultiply>) return Preset::kMultiply;
   return Preset::kOther;
 }
 
@@ -68,8 +77,8 @@ inline float factor(BlendFactor f, int c, const Rgba& s, const Rgba& d, const Rg
   return 0.0f;
 }
 
-// op(s * fs, d * fd). kMin and kMax take s and d themselves. min and max return the second
-// operand when either is NaN (x86's minps and maxps, which the SIMD form matches).
+// op(s * fs, d * fd). kMin and kMax take s and d themselves, and return d when either is NaN
+// (the SIMD form selects by the same comparisons).
 inline float combine(BlendOp op, float s, float fs, float d, float fd) {
   switch (op) {
     case BlendOp::kAdd:
@@ -130,6 +139,17 @@ inline void write_rgba32f(const BlendState& b, const Rgba& k, const Rgba& src, f
     if (b.write_mask & (1u << c)) values[c] = out[c];
 }
 
+// One sample of the target's format after a fragment of colour `src`: RGBA8 `bytes` or
+// RGBA32F `values` (the other null).
+inline void write_sample(const BlendState& b, const Rgba& k, const Rgba& src, uint8_t* bytes,
+                         float* values) {
+  if (bytes != nullptr) {
+    write_rgba8(b, k, src, bytes);
+  } else {
+    write_rgba32f(b, k, src, values);
+  }
+}
+
 // The colour an antialiased point or line fragment, or any fragment of a draw whose blend
 // state does more than store (BlendState::replaces() false), leaves in one sample: RGBA8
 // `bytes` or RGBA32F `values` (the other null). With `antialiased`, the fragment's alpha is
@@ -146,11 +166,7 @@ inline bool write_primitive_sample(const PipelineState& pipeline, Rgba color, fl
     color[3] = std::clamp(color[3], 0.0f, 1.0f) * std::min(coverage, 1.0f);
   }
   if (!state.replaces()) {
-    if (bytes != nullptr) {
-      write_rgba8(state, pipeline.blend_constant, color, bytes);
-    } else {
-      write_rgba32f(state, pipeline.blend_constant, color, values);
-    }
+    write_sample(state, pipeline.blend_constant, color, bytes, values);
     return true;
   }
   // Source-over with the colour as it is (the line kernel's runs blend the same way).

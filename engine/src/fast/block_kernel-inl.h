@@ -308,22 +308,14 @@ inline void triangle_hiz_range(const TileContext& tc, const TriangleSetup& t, fl
 template <class F>
 HWY_INLINE auto with_blend_state(const TileContext& tc, F&& f) {
   switch (tc.blend_preset) {
-    case blend::Preset::kOver: {
-      static constexpr BlendState kState = BlendState::over();
-      return f(kState);
-    }
-    case blend::Preset::kPremultipliedOver: {
-      static constexpr BlendState kState = BlendState::premultiplied_over();
-      return f(kState);
-    }
-    case blend::Preset::kAdditive: {
-      static constexpr BlendState kState = BlendState::additive();
-      return f(kState);
-    }
-    case blend::Preset::kMultiply: {
-      static constexpr BlendState kState = BlendState::multiply();
-      return f(kState);
-    }
+    case blend::Preset::kOver:
+      return f(blend::kPresetState<blend::Preset::kOver>);
+    case blend::Preset::kPremultipliedOver:
+      return f(blend::kPresetState<blend::Preset::kPremultipliedOver>);
+    case blend::Preset::kAdditive:
+      return f(blend::kPresetState<blend::Preset::kAdditive>);
+    case blend::Preset::kMultiply:
+      return f(blend::kPresetState<blend::Preset::kMultiply>);
     case blend::Preset::kOther:
       break;
   }
@@ -1720,11 +1712,9 @@ HWY_INLINE void write_pixel(const TileContext& tc, size_t index, uint32_t sample
     const blend::Rgba src = {channel[0], channel[1], channel[2], channel[3]};
     for (uint32_t rest = samples; rest != 0; rest &= rest - 1) {
       const size_t at = std::countr_zero(rest) * kSamplePlane + index;
-      if constexpr (kColor == ColorMode::kRGBA8) {
-        blend::write_rgba8(*tc.blend, tc.blend_constant, src, tc.rgba8 + at * 4);
-      } else {
-        blend::write_rgba32f(*tc.blend, tc.blend_constant, src, tc.rgba32f + at * 4);
-      }
+      blend::write_sample(*tc.blend, tc.blend_constant, src,
+                          kColor == ColorMode::kRGBA8 ? tc.rgba8 + at * 4 : nullptr,
+                          kColor == ColorMode::kRGBA8 ? nullptr : tc.rgba32f + at * 4);
     }
     return;
   }

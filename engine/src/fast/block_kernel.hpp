@@ -16,6 +16,7 @@
 #include "engine/src/blend/blend.hpp"
 #include "engine/src/fast/pixel_record.hpp"
 #include "engine/src/fast/triangle_setup.hpp"
+#include "engine/src/scissor.hpp"
 #include "engine/src/shade/layout.hpp"
 #include "tessera/pipeline.hpp"
 #include "tessera/renderer.hpp"
@@ -67,7 +68,7 @@ struct TileContext {
 
   // The pixels the draw may write (scissor.hpp's draw_box: the framebuffer, or the scissor
   // rectangle inside it).
-  int32_t clip_x0 = 0, clip_y0 = 0, clip_x1 = -1, clip_y1 = -1;
+  PixelBox clip;
   // The region drawn: its first and last pixel (inclusive, inside the framebuffer): a bin tile
   // inside one storage tile, clipped to the draw's pixels (block-aligned except at the edges of
   // a scissor rectangle). The storage tile's first pixel and storage:

@@ -185,11 +185,7 @@ void FastRasterizer::draw(tbb::task_arena& arena, detail::FramebufferStorage& fb
   const SampleKernel samples_kernel = records && (samples == 2 || samples == 4)
                                           ? sample_kernel(*st.kernels, depth, color, st.count)
                                           : nullptr;
-  const PixelBox box = draw_box(pipeline, fb.desc.width, fb.desc.height);
-  draw.clip_x0 = box.x0;
-  draw.clip_y0 = box.y0;
-  draw.clip_x1 = box.x1;
-  draw.clip_y1 = box.y1;
+  draw.clip = draw_box(pipeline, fb.desc.width, fb.desc.height);
   const CompareOp op = pipeline.depth_compare;
   draw.hiz = st.hiz && pipeline.depth_test &&
              (op == CompareOp::kLess || op == CompareOp::kLessEqual || op == CompareOp::kGreater ||

@@ -196,10 +196,10 @@ void raster_tile(const TileContext& draw, TriangleKernel kernel, PixelKernel pix
       if (user_batch) tc.user_batch = &*user_batch;
       tc.tile_x0 = sx;
       tc.tile_y0 = sy;
-      tc.x0 = std::max({bx0, sx, draw.clip_x0});
-      tc.y0 = std::max({by0, sy, draw.clip_y0});
-      tc.x1 = std::min({bx1, sx + kStorage - 1, draw.clip_x1});
-      tc.y1 = std::min({by1, sy + kStorage - 1, draw.clip_y1});
+      tc.x0 = std::max({bx0, sx, draw.clip.x0});
+      tc.y0 = std::max({by0, sy, draw.clip.y0});
+      tc.x1 = std::min({bx1, sx + kStorage - 1, draw.clip.x1});
+      tc.y1 = std::min({by1, sy + kStorage - 1, draw.clip.y1});
       if (tc.x0 > tc.x1 || tc.y0 > tc.y1) continue;  // outside the scissor rectangle
       const size_t base = size_t{storage_tile} * fb.desc.samples * binning::kTilePixels;
       tc.depth = fb.depth.data() + base;

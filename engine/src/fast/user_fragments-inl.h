@@ -246,12 +246,10 @@ void shade_user_block(const TileContext& tc, const TriangleSetup& t, const float
         wrote = true;
       }
       if (tc.blend != nullptr) {
-        const blend::Rgba src = {colour[0], colour[1], colour[2], colour[3]};
-        if (tc.rgba8 != nullptr) {
-          blend::write_rgba8(*tc.blend, tc.blend_constant, src, tc.rgba8 + at * 4);
-        } else {
-          blend::write_rgba32f(*tc.blend, tc.blend_constant, src, tc.rgba32f + at * 4);
-        }
+        blend::write_sample(*tc.blend, tc.blend_constant,
+                            {colour[0], colour[1], colour[2], colour[3]},
+                            tc.rgba8 != nullptr ? tc.rgba8 + at * 4 : nullptr,
+                            tc.rgba8 != nullptr ? nullptr : tc.rgba32f + at * 4);
       } else if (tc.rgba8 != nullptr) {
         std::copy_n(packed, 4, tc.rgba8 + at * 4);
       } else {

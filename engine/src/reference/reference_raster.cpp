@@ -288,13 +288,11 @@ TargetValues built_in_values(const PipelineState& pipeline, const FragmentInputs
 void write_targets(detail::FramebufferStorage& fb, const PipelineState& pipeline, size_t index,
                    const TargetValues& v, uint32_t targets) {
   const BlendState& blending = pipeline.blend[0];
+  const bool rgba8 = fb.desc.color_format == ColorFormat::kRGBA8;
   if (!blending.replaces()) {
-    if (fb.desc.color_format == ColorFormat::kRGBA8) {
-      blend::write_rgba8(blending, pipeline.blend_constant, v.rgba[0], fb.rgba8.data() + index * 4);
-    } else {
-      blend::write_rgba32f(blending, pipeline.blend_constant, v.rgba[0],
-                           fb.rgba32f.data() + index * 4);
-    }
+    blend::write_sample(blending, pipeline.blend_constant, v.rgba[0],
+                        rgba8 ? fb.rgba8.data() + index * 4 : nullptr,
+                        rgba8 ? nullptr : fb.rgba32f.data() + index * 4);
   } else if (fb.desc.color_format == ColorFormat::kRGBA8) {
     for (int c = 0; c < 4; ++c)
       fb.rgba8[index * 4 + c] = to_unorm8(v.rgba[0][c]);
